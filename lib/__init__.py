@@ -1,0 +1,1 @@
+"""rfc.lib: the hardware library that generated systems are built from."""

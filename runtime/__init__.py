@@ -1,0 +1,1 @@
+"""rfc.runtime: what runs on the processor side of a generated system."""

@@ -1,0 +1,1 @@
+"""Message types, their flattened layouts, selections and the reference codec."""

@@ -1,0 +1,381 @@
+"""The one place rfc talks to rosbags: message definitions, (de)serialization and bags.
+
+rosbags is rfc's only source of message definitions and its oracle for serialization. Everything
+else in rfc sees the neutral `FieldDef` description below, so that no other module depends on
+rosbags' tuples, and so that a rosbags upgrade touches one file.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Iterator, Mapping, Sequence
+from dataclasses import dataclass
+from enum import StrEnum
+from functools import cache
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from rosbags.highlevel import AnyReader, AnyReaderError
+from rosbags.interfaces import Nodetype
+from rosbags.serde import SerdeError
+from rosbags.typesys import Stores, TypesysError, get_types_from_msg, get_typestore
+from rosbags.typesys.base import normalize_fieldname
+from rosbags.typesys.store import Typestore
+
+from rfc.errors import RfcError, closest, did_you_mean
+
+
+class Middleware(StrEnum):
+    """The robotics middleware whose wire format a converter speaks."""
+
+    ROS1 = "ros1"
+    ROS2 = "ros2"
+
+    @property
+    def label(self) -> str:
+        """The name people write: ``ROS 1``, ``ROS 2``."""
+        return f"ROS {self.value[-1]}"
+
+
+DEFAULT_DISTRO = {Middleware.ROS1: "noetic", Middleware.ROS2: "humble"}
+DISTROS = {
+    Middleware.ROS1: ("noetic",),
+    Middleware.ROS2: (
+        "dashing",
+        "eloquent",
+        "foxy",
+        "galactic",
+        "humble",
+        "iron",
+        "jazzy",
+        "kilted",
+        "lyrical",
+    ),
+}
+
+#: Serialized size in bytes of each primitive type rosbags knows how to serialize.
+PRIMITIVE_SIZES = {
+    "bool": 1,
+    "byte": 1,
+    "char": 1,
+    "int8": 1,
+    "uint8": 1,
+    "int16": 2,
+    "uint16": 2,
+    "int32": 4,
+    "uint32": 4,
+    "int64": 8,
+    "uint64": 8,
+    "float32": 4,
+    "float64": 8,
+}
+
+#: NumPy dtype of each primitive, as rosbags stores arrays of it (byte is signed, char unsigned).
+PRIMITIVE_DTYPES = {
+    "bool": np.dtype(np.bool_),
+    "byte": np.dtype(np.int8),
+    "char": np.dtype(np.uint8),
+    "int8": np.dtype(np.int8),
+    "uint8": np.dtype(np.uint8),
+    "int16": np.dtype("<i2"),
+    "uint16": np.dtype("<u2"),
+    "int32": np.dtype("<i4"),
+    "uint32": np.dtype("<u4"),
+    "int64": np.dtype("<i8"),
+    "uint64": np.dtype("<u8"),
+    "float32": np.dtype("<f4"),
+    "float64": np.dtype("<f8"),
+}
+
+#: The member rosbags gives messages without fields (ROS 2's IDL needs one; ROS 1 sends nothing).
+_EMPTY_PLACEHOLDER = "structure_needs_at_least_one_member"
+
+
+@dataclass(frozen=True)
+class FieldDef:
+    """One field of a message definition, as written in the .msg file.
+
+    Attributes:
+        name: The field's name in the definition.
+        base: A primitive name, ``string``, or the canonical name of a message type.
+        is_message: Whether `base` is a message type.
+        array_length: Element count of a fixed-size array (``float64[9]``), else None.
+        is_sequence: Whether the field is a variable-length sequence (``float64[]``).
+        sequence_bound: Maximum element count of a bounded sequence, 0 when unbounded.
+        string_bound: Maximum length of a bounded string, 0 when unbounded.
+    """
+
+    name: str
+    base: str
+    is_message: bool
+    array_length: int | None = None
+    is_sequence: bool = False
+    sequence_bound: int = 0
+    string_bound: int = 0
+
+
+def attribute_name(field_name: str) -> str:
+    """Return the Python attribute under which rosbags stores a field (keywords get a suffix)."""
+    return normalize_fieldname(field_name)
+
+
+def canonical_name(name: str) -> str:
+    """Turn ``pkg/Name`` into rosbags' canonical ``pkg/msg/Name``; leave other forms alone."""
+    parts = name.strip("/").split("/")
+    if len(parts) == 2:
+        return f"{parts[0]}/msg/{parts[1]}"
+    return "/".join(parts)
+
+
+class MessageTypes:
+    """The message definitions visible to one middleware: a rosbags store plus the user's own.
+
+    Args:
+        middleware: ROS 1 (the noetic store) or ROS 2 (one of the ROS 2 distributions).
+        distro: Store to start from; defaults to noetic for ROS 1 and humble for ROS 2.
+        msg_paths: Directories searched for ``<package>/msg/<Name>.msg`` definitions.
+        bags: Bags whose embedded definitions are added (ROS 2 mcap/db3, ROS 1 bag).
+
+    Raises:
+        RfcError: An unknown distro, a missing directory or bag, or a definition that does not
+            parse or refers to a type nobody defines.
+    """
+
+    def __init__(
+        self,
+        middleware: Middleware | str = Middleware.ROS2,
+        distro: str | None = None,
+        msg_paths: Sequence[str | Path] = (),
+        bags: Sequence[str | Path] = (),
+    ) -> None:
+        self.middleware = Middleware(middleware)
+        self.distro = distro or DEFAULT_DISTRO[self.middleware]
+        if self.distro not in DISTROS[self.middleware]:
+            raise RfcError(
+                f"unknown {self.middleware.label} distro '{self.distro}'; expected one "
+                f"of {', '.join(DISTROS[self.middleware])}",
+                hint=did_you_mean(self.distro, DISTROS[self.middleware]),
+            )
+        self._store: Typestore = get_typestore(Stores(f"{self.middleware.value}_{self.distro}"))
+        self._fields: dict[str, tuple[FieldDef, ...]] = {}
+        self.cache: dict[Any, Any] = {}
+        """Results derived from these definitions (layouts), kept with them."""
+        for directory in msg_paths:
+            self._register(_definitions_in_directory(Path(directory)), str(directory))
+        for bag in bags:
+            self._register(_definitions_in_bag(Path(bag), self._store), str(bag))
+
+    def _register(self, definitions: dict[str, Any], origin: str) -> None:
+        try:
+            self._store.register(definitions)
+        except TypesysError as exc:
+            raise RfcError(f"{origin}: {exc}") from None
+        known = self._store.fielddefs
+        for name, (_, fields) in definitions.items():
+            for field_name, desc in fields:
+                for ref in _referenced_types(desc):
+                    if ref not in known:
+                        raise RfcError(
+                            f"{origin}: {name} field '{field_name}' has type '{ref}', "
+                            "which no definition provides",
+                            hint="add the directory that holds it with --msg-path",
+                        )
+
+    def names(self) -> list[str]:
+        """Return every canonical type name, sorted."""
+        return sorted(self._store.fielddefs)
+
+    def resolve(self, name: str) -> str:
+        """Return the canonical name (``pkg/msg/Name``) of a type given in any usual spelling.
+
+        Raises:
+            RfcError: No such type; the message suggests the closest names.
+        """
+        canonical = canonical_name(name)
+        if canonical in self._store.fielddefs:
+            return canonical
+        known = self.names()
+        # Match in the user's own spelling (Name, pkg/Name or pkg/msg/Name), suggest full names.
+        parts = name.strip("/").count("/") + 1
+        spelled = {1: lambda n: n.rsplit("/", 1)[-1], 2: _short_name}.get(parts, lambda n: n)
+        by_spelling: dict[str, list[str]] = {}
+        for known_name in known:
+            by_spelling.setdefault(spelled(known_name), []).append(known_name)
+        matches = [n for key in closest(name, by_spelling) for n in by_spelling[key]]
+        shown = [n if parts == 3 else _short_name(n) for n in matches[:3]]
+        hint = ("did you mean " + " or ".join(f"'{n}'" for n in shown) + "?") if shown else None
+        raise RfcError(
+            f"unknown message type '{name}' for {self.middleware.label} {self.distro}",
+            hint=hint or "add the directory of your own .msg files with --msg-path",
+        )
+
+    def display_name(self, canonical: str) -> str:
+        """Spell a type the way its middleware does: ``pkg/Name`` (ROS 1), ``pkg/msg/Name``."""
+        return _short_name(canonical) if self.middleware is Middleware.ROS1 else canonical
+
+    def fields(self, canonical: str) -> tuple[FieldDef, ...]:
+        """Return the fields of a type in serialization order."""
+        if canonical not in self._fields:
+            _, raw = self._store.fielddefs[canonical]
+            self._fields[canonical] = tuple(
+                _field_def(name, desc)
+                for name, desc in raw
+                # rosbags models empty messages as ROS 2 does; on the ROS 1 wire they are empty.
+                if not (self.middleware is Middleware.ROS1 and name == _EMPTY_PLACEHOLDER)
+            )
+        return self._fields[canonical]
+
+    def serialize(self, message: object, canonical: str) -> bytes:
+        """Serialize with rosbags: CDR (with its 4-byte header) for ROS 2, ROS 1 otherwise."""
+        if self.middleware is Middleware.ROS2:
+            return bytes(self._store.serialize_cdr(message, canonical, little_endian=True))
+        return bytes(self._store.serialize_ros1(message, canonical))
+
+    def deserialize(self, data: bytes | memoryview, canonical: str) -> object:
+        """Deserialize with rosbags; raises RfcError on bytes that are not a valid message."""
+        try:
+            if self.middleware is Middleware.ROS2:
+                return self._store.deserialize_cdr(data, canonical)
+            return self._store.deserialize_ros1(data, canonical)
+        except SerdeError as exc:
+            raise RfcError(f"not a valid {canonical} message: {exc}") from None
+
+    def build(self, canonical: str, tree: Mapping[str, Any]) -> object:
+        """Build a rosbags message object from a nested dict of field name → value.
+
+        Sub-messages are nested dicts, arrays and sequences plain lists; primitive arrays become
+        NumPy arrays of the dtype rosbags uses.
+        """
+        cls = self._store.types[canonical]
+        kwargs = {}
+        for field in self.fields(canonical):
+            if field.name not in tree:  # a sub-message without fields has no leaves
+                tree = {**tree, field.name: [{}] * (field.array_length or 0) or {}}
+            value = tree[field.name]
+            if field.array_length is not None or field.is_sequence:
+                if field.is_message:
+                    value = [self.build(field.base, item) for item in value]
+                elif field.base != "string":
+                    value = np.asarray(value, dtype=PRIMITIVE_DTYPES[field.base])
+                else:
+                    value = list(value)
+            elif field.is_message:
+                value = self.build(field.base, value)
+            kwargs[attribute_name(field.name)] = value
+        return cls(**kwargs)
+
+
+def _short_name(canonical: str) -> str:
+    return canonical.replace("/msg/", "/", 1)
+
+
+def _field_def(name: str, desc: tuple[Any, Any]) -> FieldDef:
+    kind, detail = desc
+    if kind == Nodetype.BASE:
+        return FieldDef(name, _primitive(name, detail[0]), False, string_bound=detail[1])
+    if kind == Nodetype.NAME:
+        return FieldDef(name, detail, True)
+    (sub_kind, sub_detail), count = detail
+    is_message = sub_kind == Nodetype.NAME
+    base = sub_detail if is_message else _primitive(name, sub_detail[0])
+    string_bound = 0 if is_message else sub_detail[1]
+    if kind == Nodetype.ARRAY:
+        return FieldDef(name, base, is_message, array_length=count, string_bound=string_bound)
+    return FieldDef(
+        name, base, is_message, is_sequence=True, sequence_bound=count, string_bound=string_bound
+    )
+
+
+def _primitive(field_name: str, base: str) -> str:
+    if base != "string" and base not in PRIMITIVE_SIZES:
+        raise RfcError(
+            f"field '{field_name}' has type '{base}', which rosbags cannot serialize",
+            hint=f"exclude '{field_name}' or use a type such as float64 or string",
+        )
+    return base
+
+
+def _referenced_types(desc: tuple[Any, Any]) -> Iterator[str]:
+    kind, detail = desc
+    if kind == Nodetype.NAME:
+        yield detail
+    elif kind in (Nodetype.ARRAY, Nodetype.SEQUENCE):
+        yield from _referenced_types(detail[0])
+
+
+def _definitions_in_directory(directory: Path) -> dict[str, Any]:
+    if not directory.is_dir():
+        raise RfcError(f"message directory '{directory}' does not exist")
+    files = sorted(directory.rglob("*.msg"))
+    if not files:
+        raise RfcError(
+            f"message directory '{directory}' holds no .msg files",
+            hint="point --msg-path at a folder containing <package>/msg/<Name>.msg",
+        )
+    definitions: dict[str, Any] = {}
+    for path in files:
+        package = path.parent.parent.name if path.parent.name == "msg" else path.parent.name
+        try:
+            definitions.update(get_types_from_msg(path.read_text(), f"{package}/msg/{path.stem}"))
+        except TypesysError as exc:
+            raise RfcError(f"{path}: not a valid message definition: {exc}") from None
+    return definitions
+
+
+def _definitions_in_bag(bag: Path, store: Typestore) -> dict[str, Any]:
+    try:
+        with AnyReader([bag], default_typestore=store) as reader:
+            fielddefs = reader.typestore.fielddefs
+    except FileNotFoundError:
+        raise RfcError(f"bag '{bag}' does not exist") from None
+    except (AnyReaderError, TypesysError) as exc:
+        raise RfcError(f"cannot read message definitions from bag '{bag}': {exc}") from None
+    return {name: fielddefs[name] for name in fielddefs if name not in store.fielddefs}
+
+
+@cache
+def message_types(
+    middleware: Middleware | str = Middleware.ROS2,
+    distro: str | None = None,
+    msg_paths: tuple[str, ...] = (),
+    bags: tuple[str, ...] = (),
+) -> MessageTypes:
+    """Return the shared `MessageTypes` for these sources (built once per process)."""
+    return MessageTypes(middleware, distro, msg_paths, bags)
+
+
+@dataclass(frozen=True)
+class BagMessage:
+    """One message of a bag: where it was published, when, and its serialized bytes."""
+
+    topic: str
+    type_name: str
+    timestamp_ns: int
+    data: bytes
+
+
+def read_bag(
+    path: str | Path, types: MessageTypes, topics: Iterable[str] = ()
+) -> Iterator[BagMessage]:
+    """Yield the messages of a ROS 1 or ROS 2 bag in time order, optionally of some topics only.
+
+    Raises:
+        RfcError: The bag is missing or unreadable, or a topic asked for is not in it.
+    """
+    wanted = set(topics)
+    try:
+        with AnyReader([Path(path)], default_typestore=types._store) as reader:
+            present = {c.topic for c in reader.connections}
+            if missing := sorted(wanted - present):
+                raise RfcError(
+                    f"bag '{path}' has no topic '{missing[0]}'",
+                    hint=did_you_mean(missing[0], present)
+                    or f"its topics are {', '.join(sorted(present))}",
+                )
+            connections = [c for c in reader.connections if not wanted or c.topic in wanted]
+            for connection, timestamp, raw in reader.messages(connections=connections):
+                yield BagMessage(connection.topic, connection.msgtype, timestamp, bytes(raw))
+    except FileNotFoundError:
+        raise RfcError(f"bag '{path}' does not exist") from None
+    except AnyReaderError as exc:
+        raise RfcError(f"cannot read bag '{path}': {exc}") from None

@@ -1,0 +1,73 @@
+"""Message definitions from the stores, user directories and bags."""
+
+from __future__ import annotations
+
+import pytest
+
+from rfc.errors import RfcError
+from rfc.messages.layout import flatten
+from rfc.messages.rosbags_adapter import MessageTypes, Middleware, canonical_name
+from tests.conftest import shared_file
+
+
+def test_canonical_names():
+    assert canonical_name("geometry_msgs/Quaternion") == "geometry_msgs/msg/Quaternion"
+    assert canonical_name("geometry_msgs/msg/Quaternion") == "geometry_msgs/msg/Quaternion"
+    assert canonical_name("/std_msgs/Header") == "std_msgs/msg/Header"
+
+
+@pytest.mark.parametrize("distro", ["foxy", "humble", "iron", "jazzy"])
+def test_ros2_distros_are_selectable(distro):
+    types = MessageTypes(Middleware.ROS2, distro)
+    assert types.resolve("sensor_msgs/Image") == "sensor_msgs/msg/Image"
+
+
+def test_unknown_distro_is_an_error_with_a_suggestion():
+    with pytest.raises(RfcError, match=r"(?s)unknown ROS 2 distro 'humbel'.*did you mean 'humble'"):
+        MessageTypes(Middleware.ROS2, "humbel")
+    with pytest.raises(RfcError, match="unknown ROS 1 distro 'humble'"):
+        MessageTypes(Middleware.ROS1, "humble")
+
+
+def test_msg_path_must_exist(tmp_path):
+    with pytest.raises(RfcError, match="does not exist"):
+        MessageTypes(msg_paths=[tmp_path / "nope"])
+    with pytest.raises(RfcError, match=r"holds no \.msg files"):
+        MessageTypes(msg_paths=[tmp_path])
+
+
+def test_msg_path_with_a_broken_definition(tmp_path):
+    pkg = tmp_path / "my_msgs" / "msg"
+    pkg.mkdir(parents=True)
+    (pkg / "Broken.msg").write_text("float64[ x\n")
+    with pytest.raises(RfcError, match=r"Broken\.msg: not a valid message definition"):
+        MessageTypes(msg_paths=[tmp_path])
+
+
+def test_msg_path_with_a_missing_dependency(tmp_path):
+    pkg = tmp_path / "my_msgs" / "msg"
+    pkg.mkdir(parents=True)
+    (pkg / "Uses.msg").write_text("other_msgs/Missing thing\n")
+    with pytest.raises(RfcError) as excinfo:
+        MessageTypes(msg_paths=[tmp_path])
+    assert "my_msgs/msg/Uses field 'thing' has type 'other_msgs/msg/Missing'" in str(excinfo.value)
+
+
+def test_package_folder_without_msg_subfolder(tmp_path):
+    (tmp_path / "flat_msgs").mkdir()
+    (tmp_path / "flat_msgs" / "Pair.msg").write_text("int32 a\nstring b\n")
+    types = MessageTypes(Middleware.ROS2, msg_paths=[tmp_path / "flat_msgs"])
+    assert [f.path for f in flatten(types, "flat_msgs/Pair").fields] == ["a", "b"]
+
+
+def test_definitions_embedded_in_a_bag():
+    bag = shared_file("bags/cdr_test_0.mcap")
+    types = MessageTypes(Middleware.ROS2, bags=[bag])
+    arrays = flatten(types, "test_msgs/msg/Arrays")
+    assert arrays.field("basic_types_values[2].uint64_value").ros_type == "uint64"
+    assert arrays.field("string_values[0]").ros_type == "string"
+
+
+def test_missing_bag_is_an_error(tmp_path):
+    with pytest.raises(RfcError, match="does not exist"):
+        MessageTypes(Middleware.ROS2, bags=[tmp_path / "missing.mcap"])

@@ -1,0 +1,22 @@
+"""Wrappers around the open HDL tools rfc runs: MyHDL conversion, GHDL, Yosys and cocotb.
+
+Every generated block goes through the same path — MyHDL → VHDL (and Verilog), GHDL analysis,
+GHDL synthesis to Verilog, Yosys `synth_xilinx` for LUT/FF figures, cocotb on GHDL for
+co-simulation — so the converters, schedulers and whole systems share these functions.
+"""
+
+from rfc.toolchain.cocotb_sim import CosimError, run_cocotb
+from rfc.toolchain.convert import convert_myhdl
+from rfc.toolchain.ghdl import GhdlError, analyze, synthesize_verilog
+from rfc.toolchain.yosys import Resources, estimate_resources
+
+__all__ = [
+    "CosimError",
+    "GhdlError",
+    "Resources",
+    "analyze",
+    "convert_myhdl",
+    "estimate_resources",
+    "run_cocotb",
+    "synthesize_verilog",
+]

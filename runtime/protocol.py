@@ -5,6 +5,12 @@ publisher index), ``u16 flags`` (bit 0 START, bit 1 END), ``u32 length`` (the wh
 payload length) — followed by payload bytes. PS→PL chunks always carry a whole message
 (START|END). PL→PS, a preemptive scheduler may cut a message into several chunks, which
 `Reassembler` puts back together by id.
+
+The logic writes a chunk's header before its payload, so it cannot always know that a chunk will
+end its message: preemption may cut it at any beat. START is always exact (the manager knows
+whether the publisher already sent part of the message); END is set when the chunk is known at
+its start to finish the message (always, for non-preemptive schedulers). A message is complete
+when its bytes reach `length`; END, when set, must agree.
 """
 
 from __future__ import annotations
@@ -133,11 +139,12 @@ class Reassembler:
         if partial.received > partial.length:
             del self._open[chunk.id]
             self._fail("overlong", f"id {chunk.id} sent more than {partial.length} bytes")
-        if ChunkFlags.END not in chunk.flags:
+        if partial.received < partial.length:
+            if ChunkFlags.END in chunk.flags:
+                del self._open[chunk.id]
+                self._fail("short", f"id {chunk.id} ended at {partial.received}/{partial.length}")
             return None
         del self._open[chunk.id]
-        if partial.received != partial.length:
-            self._fail("short", f"id {chunk.id} ended at {partial.received}/{partial.length}")
         return b"".join(partial.parts)
 
     def pending(self) -> list[int]:

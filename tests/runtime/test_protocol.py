@@ -60,6 +60,13 @@ def test_interleaved_chunks_reassemble_by_id(case):
     assert reassembler.pending() == []
 
 
+def test_a_chunk_cut_by_preemption_has_no_end_flag_and_completes_by_length():
+    reassembler = Reassembler()
+    assert reassembler.feed(Chunk(5, ChunkFlags.START, 6, b"abc")) is None
+    assert reassembler.feed(Chunk(5, ChunkFlags(0), 6, b"def")) == b"abcdef"
+    assert reassembler.pending() == []
+
+
 def test_orphan_continuation_is_dropped_and_counted():
     reassembler = Reassembler()
     with pytest.raises(ProtocolError, match="orphan"):

@@ -61,7 +61,8 @@ def _check_names(design: Design) -> None:
             )
         check_unique(
             ((p.name, p.at("name")) for p in accelerator.ports),
-            f"port of accelerator '{accelerator.name}'",
+            "port",
+            f" in accelerator '{accelerator.name}'",
         )
     for block in design.blocks:
         check_identifier(block.name, "block", block.at("name"))
@@ -109,12 +110,16 @@ def _resolve(connection: Connection, blocks: dict[str, Block]) -> Connection:
         pairs = [(outputs[0], inputs[0])]
     else:
         pairs = [(o, i) for o in outputs for i in inputs if o.message == i.message]
-    if len(pairs) != 1:
-        options = ", ".join(f"{o.name} → {i.name}" for o, i in pairs) or "none of the same type"
+    if not pairs:
         raise RfcError(
-            f"{what} is ambiguous: {source.name} has outputs "
-            f"{', '.join(p.name for p in outputs)} and {destination.name} has inputs "
-            f"{', '.join(p.name for p in inputs)} ({options})",
+            f"type mismatch: '{source.name}' sends {_typed(outputs)}, but "
+            f"'{destination.name}' takes {_typed(inputs)}",
+            location=connection.location,
+        )
+    if len(pairs) > 1:
+        options = " or ".join(f"{o.name} → {i.name}" for o, i in pairs)
+        raise RfcError(
+            f"{what} is ambiguous: it could join {options}",
             location=connection.location,
             hint="name the ports: 'from:' and 'port:' in YAML, block['port'] in Python",
         )
@@ -131,6 +136,10 @@ def _resolve(connection: Connection, blocks: dict[str, Block]) -> Connection:
         destination=replace(connection.destination, port=input_.name),
         message=output.message,
     )
+
+
+def _typed(ports: list[Port]) -> str:
+    return ", ".join(f"{p.message} ({p.name})" for p in ports)
 
 
 def _block(endpoint: Endpoint, connection: Connection, blocks: dict[str, Block]) -> Block:

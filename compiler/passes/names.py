@@ -153,19 +153,27 @@ def check_identifier(name: str, what: str, location: SourceLocation) -> None:
         )
 
 
-def check_unique(named: Iterable[tuple[str, SourceLocation]], what: str) -> None:
-    """Raise at the second of two equal names (or names differing only in case)."""
+def check_unique(named: Iterable[tuple[str, SourceLocation]], what: str, where: str = "") -> None:
+    """Raise at the second of two equal names (or names differing only in case).
+
+    Args:
+        named: Names and where each was written.
+        what: What the names name (``block``).
+        where: The scope, for messages (`` in accelerator 'X'``).
+    """
     seen: dict[str, tuple[str, SourceLocation]] = {}
     for name, location in named:
         key = name.lower()
         if key in seen:
             first, first_location = seen[key]
             if first == name:
-                message = f"duplicate {what} name '{name}' (first defined at {first_location})"
+                message = (
+                    f"duplicate {what} name '{name}'{where} (first defined at {first_location})"
+                )
             else:
                 message = (
-                    f"{what} name '{name}' differs from '{first}' (at {first_location}) only "
-                    "in case; the generated VHDL would not tell them apart"
+                    f"{what} name '{name}'{where} differs from '{first}' (at {first_location}) "
+                    "only in case; the generated VHDL would not tell them apart"
                 )
             raise RfcError(message, location=location)
         seen[key] = (name, location)

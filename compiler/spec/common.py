@@ -151,7 +151,11 @@ def source_file(text: str, base: Path, what: str, location: SourceLocation) -> P
     """Resolve a path written in the spec against the spec's directory; it must exist."""
     path = (base / str(text)).resolve()
     if not path.exists():
-        raise RfcError(f"{what} '{text}' does not exist (looked for {path})", location=location)
+        raise RfcError(
+            f"{what} '{text}' does not exist",
+            location=location,
+            hint="paths are relative to the folder of the spec",
+        )
     return path
 
 
@@ -163,8 +167,8 @@ def check_source_suffixes(
     for path, location in sources:
         if path.suffix.lower() not in allowed:
             raise RfcError(
-                f"{owner} is {kind.value}, but source '{path.name}' is not a "
-                f"{kind.value} file; expected {', '.join(allowed)}",
+                f"{owner} is {kind.value}, whose sources end in {', '.join(allowed)}; "
+                f"'{path.name}' does not",
                 location=location,
             )
 

@@ -139,8 +139,10 @@ def accelerator(
     def decorate(block_function: Any) -> AcceleratorDefinition:
         function = getattr(block_function, "func", None)
         if not type(block_function).__module__.startswith("myhdl") or not callable(function):
+            name = getattr(block_function, "__name__", None)
+            got = type(block_function).__name__ + (f" '{name}'" if name else "")
             raise RfcError(
-                f"@rfc.accelerator expects a MyHDL @block function, not {block_function!r}",
+                f"@rfc.accelerator expects a MyHDL @block function, but got {got}",
                 location=location,
                 hint="put @block (from myhdl) between @rfc.accelerator and the function",
             )

@@ -41,13 +41,15 @@ def load_python_spec(path: Path, display: str | None = None) -> Design:
     except RfcError:
         raise
     except SyntaxError as exc:
+        file = _name(exc.filename or display, path, display)
         raise RfcError(
             f"Python syntax error: {exc.msg}",
-            location=SourceLocation(exc.filename or display, exc.lineno or 1, exc.offset or 1),
+            location=SourceLocation(file, exc.lineno or 1, exc.offset or 1),
         ) from None
     except Exception as exc:  # the user's code failed: report it at its line, no traceback
         raise RfcError(
-            f"the spec raised {type(exc).__name__}: {exc}", location=_failing_line(exc, path)
+            f"the spec raised {type(exc).__name__}: {exc}",
+            location=_failing_line(exc, path, display),
         ) from None
     finally:
         sys.path.remove(directory)
@@ -67,12 +69,15 @@ def load_python_spec(path: Path, display: str | None = None) -> Design:
     return projects[0].design()
 
 
-def _failing_line(exc: BaseException, path: Path) -> SourceLocation | None:
+def _name(filename: str, path: Path, display: str) -> str:
+    """Name the spec file as the user gave it, other files as Python reports them."""
+    return display if Path(filename).resolve() == path.resolve() else filename
+
+
+def _failing_line(exc: BaseException, path: Path, display: str) -> SourceLocation | None:
     """The deepest frame of the traceback that is in the spec file."""
-    target = path.resolve()
     found = None
     for frame in traceback.extract_tb(exc.__traceback__):
-        if Path(frame.filename).resolve() == target:
-            column = (frame.colno or 0) + 1
-            found = SourceLocation(frame.filename, frame.lineno or 1, column)
+        if Path(frame.filename).resolve() == path.resolve():
+            found = SourceLocation(display, frame.lineno or 1, (frame.colno or 0) + 1)
     return found

@@ -148,10 +148,9 @@ class _YamlFrontend:
             )
 
     def _accelerator(self, node: YamlNode) -> AcceleratorType:
-        reader = MappingReader(node, ACCELERATOR, "an accelerator")
+        reader = MappingReader(node, ACCELERATOR, "an accelerator", named="accelerator")
         name = reader.get("name")
-        owner = f"accelerator '{name}'"
-        reader.owner = owner
+        owner = reader.owner
         kind = common.accelerator_kind(reader.get("type"), reader.location("type"))
         sources = [
             (common.source_file(text, self.base, "source file", location), location)
@@ -192,7 +191,7 @@ class _YamlFrontend:
 
     def _port(self, node: YamlNode, direction: Direction, index: int, owner: str) -> Port:
         what = "an input" if direction is Direction.IN else "an output"
-        reader = MappingReader(node, PORT, f"{what} of {owner}")
+        reader = MappingReader(node, PORT, f"{what} of {owner}", named=f"port of {owner}")
         name = reader.get("name", common.default_port_name(direction.value, index))
         self._state_middleware(reader, f"port '{name}' of {owner}")
         include, exclude = reader.strings("include"), reader.strings("exclude")
@@ -209,9 +208,8 @@ class _YamlFrontend:
         )
 
     def _block(self, node: YamlNode, clock: float) -> tuple[Block, list[Connection]]:
-        reader = MappingReader(node, BLOCK, "a block")
+        reader = MappingReader(node, BLOCK, "a block", named="block")
         name = reader.get("name")
-        reader.owner = f"block '{name}'"
         written = reader.get("type")
         kind = _CONVERTER_TYPES.get(re.sub(r"\s+", "", str(written)).lower(), BlockKind.ACCELERATOR)
         if kind is BlockKind.ACCELERATOR:

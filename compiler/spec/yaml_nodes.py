@@ -117,14 +117,18 @@ class MappingReader:
     Args:
         node: The mapping node.
         section: Its section of the format.
-        owner: How to name the mapping in messages (``block 'Euler_pub'``).
+        owner: How to name the mapping in messages (``a block``).
+        named: When given and the mapping has a string ``name``, the mapping is called
+            ``<named> '<name>'`` instead (``block 'Euler_pub'``).
     """
 
-    def __init__(self, node: YamlNode, section: Section, owner: str) -> None:
+    def __init__(
+        self, node: YamlNode, section: Section, owner: str, named: str | None = None
+    ) -> None:
         expect_kind(node, (ValueKind.MAPPING,), owner)
         self.node = node
         self.section = section
-        self.owner = owner
+        self.owner = _owner(node, owner, named)
         self.keys: dict[str, YamlNode] = {}
         self.values: dict[str, YamlNode] = {}
         for key_node, value_node in node.node.value:
@@ -138,15 +142,17 @@ class MappingReader:
                 )
             if name in self.keys:
                 raise RfcError(
-                    f"key '{name}' appears twice in {owner} (first at {self.keys[name].location})",
+                    f"key '{name}' appears twice in {self.owner} "
+                    f"(first at {self.keys[name].location})",
                     location=key.location,
                 )
-            expect_kind(value, section.key(name).kinds, f"'{name}' of {owner}")
+            expect_kind(value, section.key(name).kinds, f"'{name}' of {self.owner}")
             self.keys[name], self.values[name] = key, value
         for key in section.keys:
             if key.required and key.name not in self.values:
                 raise RfcError(
-                    f"{owner} has no '{key.name}'; it is required ({key.description})",
+                    f"{self.owner} has no '{key.name}', which is required: "
+                    f"{key.description.rstrip('.')}",
                     location=node.location,
                 )
 
@@ -186,6 +192,17 @@ class MappingReader:
         """The elements of a list key (none when absent)."""
         if name in self.values:
             yield from self.values[name].elements()
+
+
+def _owner(node: YamlNode, owner: str, named: str | None) -> str:
+    if named is None:
+        return owner
+    for key, value in node.node.value:
+        if key.value == "name" and isinstance(value, ScalarNode):
+            name = node.child(value)
+            if name.kind is ValueKind.STRING:
+                return f"{named} '{name.value}'"
+    return owner
 
 
 def pick(node: YamlNode, key: Key, what: str) -> str:

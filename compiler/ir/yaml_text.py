@@ -3,12 +3,12 @@
 The IR text of a large system holds thousands of field rows; ruamel.yaml's pure-Python dumper
 takes about half a millisecond per row, so this writer emits the plain subset rfc needs:
 block mappings and lists, flow mappings for rows (`Flow`), and scalars — plain when YAML reads
-them back as the same string, JSON-quoted otherwise. Tests hold it to ruamel.yaml's reading.
+them back as the same string, double-quoted with escapes otherwise. Tests hold it to
+ruamel.yaml's reading.
 """
 
 from __future__ import annotations
 
-import json
 import re
 from collections.abc import Mapping, Sequence
 from typing import Any
@@ -17,12 +17,17 @@ _PLAIN = re.compile(r"[A-Za-z_/$][A-Za-z0-9_./$>+\-]*(?: [A-Za-z0-9_./$>+\-()]+)
 _SPECIAL = frozenset(["true", "false", "yes", "no", "on", "off", "null", "~"])
 
 
+_ESCAPES = {'"': '\\"', "\\": "\\\\", "\n": "\\n", "\t": "\\t", "\r": "\\r"}
+
+
 class Flow(dict[str, Any]):
     """A mapping written on one line: ``{path: x, type: float64, offset: 4}``."""
 
 
 def dump_yaml(document: Mapping[str, Any]) -> str:
     """Render a mapping of mappings, lists and scalars as a YAML document."""
+    if not document:
+        return "{}\n"
     lines: list[str] = []
     _mapping(document, 0, lines)
     return "\n".join(lines) + "\n"
@@ -39,7 +44,25 @@ def scalar(value: Any) -> str:
     text = str(value)
     if _PLAIN.fullmatch(text) and text.lower() not in _SPECIAL:
         return text
-    return json.dumps(text, ensure_ascii=False)
+    return _quoted(text)
+
+
+def _quoted(text: str) -> str:
+    """A double-quoted YAML scalar: printable ASCII as is, everything else escaped."""
+    out = []
+    for char in text:
+        code = ord(char)
+        if char in _ESCAPES:
+            out.append(_ESCAPES[char])
+        elif 0x20 <= code < 0x7F:
+            out.append(char)
+        elif code <= 0xFF:
+            out.append(f"\\x{code:02x}")
+        elif code <= 0xFFFF:
+            out.append(f"\\u{code:04x}")
+        else:
+            out.append(f"\\U{code:08x}")
+    return '"' + "".join(out) + '"'
 
 
 def _flow(value: Any) -> str:

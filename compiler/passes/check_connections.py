@@ -57,7 +57,7 @@ def _check_names(design: Design) -> None:
         check_identifier(accelerator.name, "accelerator type", accelerator.at("name"))
         for port in accelerator.ports:
             check_identifier(
-                port.name, f"port of accelerator '{accelerator.name}'", port.at("name")
+                port.name, "port", port.at("name"), f" of accelerator '{accelerator.name}'"
             )
         check_unique(
             ((p.name, p.at("name")) for p in accelerator.ports),

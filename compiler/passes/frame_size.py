@@ -42,7 +42,11 @@ def _field_bound(field: LayoutField, cdr: bool) -> int | None:
     if field.kind is FieldKind.STRING:
         return padding + LENGTH_PREFIX_SIZE + field.bound + (1 if cdr else 0)
     element = _element_bound(field, cdr)
-    return None if element is None else padding + LENGTH_PREFIX_SIZE + field.bound * element
+    if element is None:
+        return None
+    size = field.element_size or 0  # primitives are contiguous: one padding, first element
+    first = size - 1 if cdr and size else 0
+    return padding + LENGTH_PREFIX_SIZE + first + field.bound * element
 
 
 def _element_bound(field: LayoutField, cdr: bool) -> int | None:
@@ -53,5 +57,4 @@ def _element_bound(field: LayoutField, cdr: bool) -> int | None:
         if field.string_bound == 0:
             return None
         return 3 + LENGTH_PREFIX_SIZE + field.string_bound + (1 if cdr else 0)
-    size = field.element_size or 0
-    return size + (size - 1 if cdr else 0)
+    return field.element_size or 0

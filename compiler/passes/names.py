@@ -136,18 +136,18 @@ VHDL_RESERVED = frozenset(
 )
 
 
-def check_identifier(name: str, what: str, location: SourceLocation) -> None:
-    """Raise unless `name` can be a VHDL identifier."""
+def check_identifier(name: str, what: str, location: SourceLocation, where: str = "") -> None:
+    """Raise unless `name` can be a VHDL identifier (`where` scopes it: `` of block 'X'``)."""
     if not _IDENTIFIER.fullmatch(name):
         raise RfcError(
-            f"{what} '{name}' is not a valid name; it names generated hardware",
+            f"{what} '{name}'{where} is not a valid name; it names generated hardware",
             location=location,
             hint="use a letter first, then letters, digits and single underscores, "
             "not ending in '_'",
         )
     if name.lower() in VHDL_RESERVED:
         raise RfcError(
-            f"{what} '{name}' is a reserved word of VHDL, where it names generated hardware",
+            f"{what} '{name}'{where} is a reserved word of VHDL, where it names generated hardware",
             location=location,
             hint=f"rename it, e.g. '{name}_0'",
         )

@@ -139,8 +139,8 @@ def accelerator(
     def decorate(block_function: Any) -> AcceleratorDefinition:
         function = getattr(block_function, "func", None)
         if not type(block_function).__module__.startswith("myhdl") or not callable(function):
-            name = getattr(block_function, "__name__", None)
-            got = type(block_function).__name__ + (f" '{name}'" if name else "")
+            called = getattr(block_function, "__name__", None)
+            got = type(block_function).__name__ + (f" '{called}'" if called else "")
             raise RfcError(
                 f"@rfc.accelerator expects a MyHDL @block function, but got {got}",
                 location=location,

@@ -218,7 +218,6 @@ def json_schema() -> dict[str, Any]:
     schema = _section_schema(ROOT)
     return {
         "$schema": "https://json-schema.org/draft/2020-12/schema",
-        "$id": "https://rfc.invalid/spec.schema.json",
         "title": "rfc system specification",
         **schema,
     }

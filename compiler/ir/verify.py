@@ -47,10 +47,8 @@ def _verify_parsed(design: Design) -> None:
     nodes += [p for b in design.blocks for p in b.ports]
     nodes += design.connections
     for node in nodes:
-        _require(
-            isinstance(getattr(node, "location", None), SourceLocation),
-            f"{node!r} has no source location",
-        )
+        if not isinstance(getattr(node, "location", None), SourceLocation):
+            raise IrInvariantError(f"{node!r} has no source location")
     for accelerator in design.accelerators:
         _require(
             all(p.direction is Direction.IN for p in accelerator.inputs)

@@ -13,14 +13,14 @@ from dataclasses import dataclass, replace
 from typing import ClassVar
 
 from rfc.errors import RfcError, did_you_mean
-from rfc.ir.fields import selected_paths
 from rfc.ir.model import Block, BlockKind, Connection, Design, Direction, Endpoint, Port, Stage
 from rfc.messages.layout import flatten
 from rfc.messages.rosbags_adapter import MessageTypes
-from rfc.messages.selection import select, validate_pattern
+from rfc.messages.selection import validate_pattern
 from rfc.passes.base import types_of
 from rfc.passes.graph import check_graph
 from rfc.passes.names import check_identifier, check_topic, check_unique
+from rfc.passes.selections import carried_fields
 
 
 @dataclass(frozen=True)
@@ -179,7 +179,7 @@ def _check_selection(connection: Connection, blocks: dict[str, Block], types: Me
     for key, patterns in (("include", connection.include), ("exclude", connection.exclude)):
         for index, pattern in enumerate(patterns):
             validate_pattern(layout, pattern, connection.at(f"{key}[{index}]"))
-    carried = set(selected_paths(select(layout, connection.include, connection.exclude)))
+    carried = set(carried_fields(types, connection.message, connection.include, connection.exclude))
     what = f"connection from '{connection.source.block}' to '{connection.destination}'"
     if not carried:
         raise RfcError(
@@ -188,7 +188,7 @@ def _check_selection(connection: Connection, blocks: dict[str, Block], types: Me
         )
     port = blocks[connection.destination.block].port(connection.destination.port)
     if port.include or port.exclude:
-        needed = selected_paths(select(layout, port.include, port.exclude))
+        needed = carried_fields(types, connection.message, port.include, port.exclude)
         missing = [path for path in needed if path not in carried]
         if missing:
             more = f" (and {len(missing) - 1} more)" if len(missing) > 1 else ""

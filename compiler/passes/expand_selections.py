@@ -9,12 +9,10 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 from typing import ClassVar
 
-from rfc.ir.fields import selected_paths
 from rfc.ir.model import Connection, Design, Stage
-from rfc.messages.layout import flatten
 from rfc.messages.rosbags_adapter import MessageTypes
-from rfc.messages.selection import select
 from rfc.passes.base import types_of
+from rfc.passes.selections import carried_fields
 
 
 @dataclass(frozen=True)
@@ -32,5 +30,5 @@ class ExpandSelections:
 
 def _expand(types: MessageTypes, connection: Connection) -> Connection:
     assert connection.message is not None
-    layout = select(flatten(types, connection.message), connection.include, connection.exclude)
-    return replace(connection, fields=tuple(selected_paths(layout)))
+    fields = carried_fields(types, connection.message, connection.include, connection.exclude)
+    return replace(connection, fields=fields)

@@ -12,11 +12,10 @@ from collections import defaultdict
 from dataclasses import dataclass, replace
 from typing import ClassVar
 
-from rfc.ir.fields import with_selection
 from rfc.ir.model import Block, Design, Direction, Port, Stage
-from rfc.messages.layout import flatten
 from rfc.messages.rosbags_adapter import MessageTypes
 from rfc.passes.base import types_of
+from rfc.passes.selections import layout_selecting
 
 
 @dataclass(frozen=True)
@@ -50,4 +49,4 @@ def _flatten_port(
     types: MessageTypes, block: Block, port: Port, used: dict[tuple[str, str, Direction], set[str]]
 ) -> Port:
     paths = frozenset(used.get((block.name, port.name, port.direction), ()))
-    return replace(port, layout=with_selection(flatten(types, port.message), paths))
+    return replace(port, layout=layout_selecting(types, port.message, paths))

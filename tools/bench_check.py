@@ -92,8 +92,10 @@ def main() -> None:
         print(result.stdout.strip())
         median = statistics.median(runs)
         print(f"blocks              {5 * args.chains}")
-        print(f"rfc check (median)  {median * 1000:8.0f} ms   target < {TARGET_S * 1000:.0f} ms"
-              f"  ratio {median / TARGET_S:.2f}")
+        print(
+            f"rfc check (median)  {median * 1000:8.0f} ms   target < {TARGET_S * 1000:.0f} ms"
+            f"  ratio {median / TARGET_S:.2f}"
+        )
         for name, seconds in in_process(spec):
             print(f"  {name:<24}{seconds * 1000:8.1f} ms (in process, first run)")
 

@@ -29,6 +29,17 @@ if TYPE_CHECKING:
 SCHEDULER_ALGORITHMS = ("LRU", "NPFP", "PFP", "ROEDF", "LOEDF", "LST", "auto")
 
 
+class _Spotted:
+    """Nodes that remember where each of their attributes was written."""
+
+    location: SourceLocation
+    spots: Mapping[str, SourceLocation]
+
+    def at(self, attribute: str) -> SourceLocation:
+        """Return where an attribute was written, or the node's own location."""
+        return self.spots.get(attribute, self.location)
+
+
 class Stage(IntEnum):
     """How far a design has been through the pipeline; each pass moves it one stage on."""
 
@@ -74,7 +85,7 @@ class AcceleratorKind(StrEnum):
 
 
 @dataclass(frozen=True)
-class Port:
+class Port(_Spotted):
     """A typed port of an accelerator type or a block.
 
     Attributes:
@@ -99,10 +110,6 @@ class Port:
     layout: Layout | None = None
     spots: Mapping[str, SourceLocation] = field(default_factory=dict, compare=False, repr=False)
 
-    def at(self, attribute: str) -> SourceLocation:
-        """Return where an attribute was written, or the port's own location."""
-        return self.spots.get(attribute, self.location)
-
 
 @dataclass(frozen=True)
 class FunctionRef:
@@ -113,7 +120,7 @@ class FunctionRef:
 
 
 @dataclass(frozen=True)
-class AcceleratorType:
+class AcceleratorType(_Spotted):
     """A kind of accelerator: how it is implemented and which messages it takes and gives.
 
     Attributes:
@@ -148,13 +155,9 @@ class AcceleratorType:
         """Inputs, then outputs."""
         return self.inputs + self.outputs
 
-    def at(self, attribute: str) -> SourceLocation:
-        """Return where an attribute was written, or the type's own location."""
-        return self.spots.get(attribute, self.location)
-
 
 @dataclass(frozen=True)
-class Block:
+class Block(_Spotted):
     """A component of the system.
 
     Attributes:
@@ -182,10 +185,6 @@ class Block:
     max_bytes: int | None = None
     ports: tuple[Port, ...] = ()
     spots: Mapping[str, SourceLocation] = field(default_factory=dict, compare=False, repr=False)
-
-    def at(self, attribute: str) -> SourceLocation:
-        """Return where an attribute was written, or the block's own location."""
-        return self.spots.get(attribute, self.location)
 
     def port(self, name: str) -> Port:
         """Return the port with this name."""
@@ -218,7 +217,7 @@ class Endpoint:
 
 
 @dataclass(frozen=True)
-class Connection:
+class Connection(_Spotted):
     """Messages flowing from a source port to a destination port.
 
     Attributes:
@@ -242,13 +241,9 @@ class Connection:
     fields: tuple[str, ...] | None = None
     spots: Mapping[str, SourceLocation] = field(default_factory=dict, compare=False, repr=False)
 
-    def at(self, attribute: str) -> SourceLocation:
-        """Return where an attribute was written, or the connection's own location."""
-        return self.spots.get(attribute, self.location)
-
 
 @dataclass(frozen=True)
-class ProjectSettings:
+class ProjectSettings(_Spotted):
     """Project-wide settings, every one explicit (front-ends fill in the defaults).
 
     Attributes:
@@ -278,10 +273,6 @@ class ProjectSettings:
     spec_file: Path
     location: SourceLocation
     spots: Mapping[str, SourceLocation] = field(default_factory=dict, compare=False, repr=False)
-
-    def at(self, attribute: str) -> SourceLocation:
-        """Return where an attribute was written, or the project's own location."""
-        return self.spots.get(attribute, self.location)
 
     @property
     def spec_dir(self) -> Path:

@@ -38,13 +38,9 @@ class DeriveInfrastructure:
     def apply(self, design: Design) -> Design:
         """Return the design at stage DERIVED, its `infrastructure` filled in."""
         width = design.project.bus_width
-        subscribers = tuple(
-            _subscriber(index, block, width)
-            for index, block in enumerate(design.blocks_of(BlockKind.SUBSCRIBER))
-        )
-        publishers = tuple(
-            _publisher(index, block, width)
-            for index, block in enumerate(design.blocks_of(BlockKind.PUBLISHER))
+        subscribers, publishers = (
+            tuple(_converter(i, block, width) for i, block in enumerate(design.blocks_of(kind)))
+            for kind in (BlockKind.SUBSCRIBER, BlockKind.PUBLISHER)
         )
         buffers = tuple(
             Buffer(converter.block, field.path, converter.max_frame_bytes)
@@ -103,27 +99,14 @@ def _timing(block: Block) -> tuple[int | None, int | None]:
     return block.period, deadline
 
 
-def _subscriber(index: int, block: Block, width: int) -> Converter:
+def _converter(index: int, block: Block, width: int) -> Converter:
+    """A subscriber receives whole messages; a publisher sends its selection, rest defaults."""
     layout = _converter_layout(block)
-    period, deadline = _timing(block)
-    return Converter(
-        id=index,
-        block=block.name,
-        topic=block.topic or "",
-        message=layout.type_name,
-        layout=layout,
-        bus_width=width,
-        frame_bytes=layout.fixed_size,
-        max_frame_bytes=_max_frame_bytes(block, layout, layout.fixed_size),
-        period=period,
-        deadline=deadline,
-    )
-
-
-def _publisher(index: int, block: Block, width: int) -> Converter:
-    layout = _converter_layout(block)
-    length_fields = tuple(f.path for f in layout.fields if f.selected and f.is_dynamic)
-    exact = None if length_fields else default_frame_bytes(layout)
+    length_fields: tuple[str, ...] = ()
+    exact = layout.fixed_size
+    if block.kind is BlockKind.PUBLISHER:
+        length_fields = tuple(f.path for f in layout.fields if f.selected and f.is_dynamic)
+        exact = None if length_fields else default_frame_bytes(layout)
     period, deadline = _timing(block)
     return Converter(
         id=index,

@@ -3,29 +3,22 @@
 import rfc
 
 IMAGE = "sensor_msgs/Image"
-USED = ["height", "width", "data"]
 
-RgbToGray = rfc.external_accelerator(
-    "RgbToGray",
-    kind="HLS",
-    sources="./rgb_to_gray.cpp",
-    inputs={"rgb": rfc.port(IMAGE, include=USED)},
-    outputs={"gray": IMAGE},
-)
-Downscale = rfc.external_accelerator(
-    "Downscale",
-    kind="HLS",
-    sources="./downscale.cpp",
-    inputs={"full": rfc.port(IMAGE, include=USED)},
-    outputs={"small": IMAGE},
-)
-IntegralImage = rfc.external_accelerator(
-    "IntegralImage",
-    kind="HLS",
-    sources="./integral_image.cpp",
-    inputs={"image": rfc.port(IMAGE, include=USED)},
-    outputs={"integral": IMAGE},
-)
+
+def image_stage(name: str, source: str, port_in: str, port_out: str):
+    """An HLS stage taking an image (of which it reads the size and pixels) and giving one."""
+    return rfc.external_accelerator(
+        name,
+        kind="HLS",
+        sources=source,
+        inputs={port_in: rfc.port(IMAGE, include=["height", "width", "data"])},
+        outputs={port_out: IMAGE},
+    )
+
+
+RgbToGray = image_stage("RgbToGray", "./rgb_to_gray.cpp", "rgb", "gray")
+Downscale = image_stage("Downscale", "./downscale.cpp", "full", "small")
+IntegralImage = image_stage("IntegralImage", "./integral_image.cpp", "image", "integral")
 
 project = rfc.Project(
     "ImagePipeline",

@@ -1,14 +1,8 @@
-# error: python_bad_bus_width.py:12:11: bus width must be 8, 32 or 64 bits, not 16
+# error: python_bad_bus_width.py:6:11: bus width must be 8, 32 or 64 bits, not 16
 # hint: none
 import rfc
+from parts import QuaternionToEuler
 
-QuaternionToEuler = rfc.external_accelerator(
-    "QuaternionToEuler",
-    kind="HLS",
-    sources="./accel.cpp",
-    inputs="geometry_msgs/Quaternion",
-    outputs="geometry_msgs/Point",
-)
 project = rfc.Project("Catalogue", bus_width=16)
 sub = project.subscriber("Quaternion_sub", "geometry_msgs/Quaternion")
 acc = project.accelerator("QuatToEuler_acc", QuaternionToEuler)

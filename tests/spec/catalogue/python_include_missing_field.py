@@ -1,14 +1,8 @@
-# error: python_include_missing_field.py:16:1: geometry_msgs/msg/Quaternion has no field 'yy'
+# error: python_include_missing_field.py:10:1: geometry_msgs/msg/Quaternion has no field 'yy'
 # hint: did you mean 'y'?
 import rfc
+from parts import QuaternionToEuler
 
-QuaternionToEuler = rfc.external_accelerator(
-    "QuaternionToEuler",
-    kind="HLS",
-    sources="./accel.cpp",
-    inputs="geometry_msgs/Quaternion",
-    outputs="geometry_msgs/Point",
-)
 project = rfc.Project("Catalogue")
 sub = project.subscriber("Quaternion_sub", "geometry_msgs/Quaternion")
 acc = project.accelerator("QuatToEuler_acc", QuaternionToEuler)

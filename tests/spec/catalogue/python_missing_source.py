@@ -10,7 +10,3 @@ QuaternionToEuler = rfc.external_accelerator(
     outputs="geometry_msgs/Point",
 )
 project = rfc.Project("Catalogue")
-sub = project.subscriber("Quaternion_sub", "geometry_msgs/Quaternion")
-acc = project.accelerator("QuatToEuler_acc", QuaternionToEuler)
-pub = project.publisher("Euler_pub", "geometry_msgs/Point")
-sub >> acc >> pub

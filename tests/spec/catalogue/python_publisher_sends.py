@@ -1,14 +1,8 @@
-# error: python_publisher_sends.py:17:1: publisher 'Euler_pub' sends to 'QuatToEuler_acc', but a publisher's messages go to ROS
+# error: python_publisher_sends.py:11:1: publisher 'Euler_pub' sends to 'QuatToEuler_acc', but a publisher's messages go to ROS
 # hint: connect the block that feeds the publisher instead
 import rfc
+from parts import QuaternionToEuler
 
-QuaternionToEuler = rfc.external_accelerator(
-    "QuaternionToEuler",
-    kind="HLS",
-    sources="./accel.cpp",
-    inputs="geometry_msgs/Quaternion",
-    outputs="geometry_msgs/Point",
-)
 project = rfc.Project("Catalogue")
 sub = project.subscriber("Quaternion_sub", "geometry_msgs/Quaternion")
 acc = project.accelerator("QuatToEuler_acc", QuaternionToEuler)

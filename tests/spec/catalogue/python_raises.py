@@ -1,14 +1,8 @@
-# error: python_raises.py:16:15: the spec raised NameError: name 'publisher' is not defined
+# error: python_raises.py:10:15: the spec raised NameError: name 'publisher' is not defined
 # hint: none
 import rfc
+from parts import QuaternionToEuler
 
-QuaternionToEuler = rfc.external_accelerator(
-    "QuaternionToEuler",
-    kind="HLS",
-    sources="./accel.cpp",
-    inputs="geometry_msgs/Quaternion",
-    outputs="geometry_msgs/Point",
-)
 project = rfc.Project("Catalogue")
 sub = project.subscriber("Quaternion_sub", "geometry_msgs/Quaternion")
 acc = project.accelerator("QuatToEuler_acc", QuaternionToEuler)

@@ -1,14 +1,8 @@
-# error: python_syntax_error.py:16:18: Python syntax error: unmatched ')'
+# error: python_syntax_error.py:10:18: Python syntax error: unmatched ')'
 # hint: none
 import rfc
+from parts import QuaternionToEuler
 
-QuaternionToEuler = rfc.external_accelerator(
-    "QuaternionToEuler",
-    kind="HLS",
-    sources="./accel.cpp",
-    inputs="geometry_msgs/Quaternion",
-    outputs="geometry_msgs/Point",
-)
 project = rfc.Project("Catalogue")
 sub = project.subscriber("Quaternion_sub", "geometry_msgs/Quaternion")
 acc = project.accelerator("QuatToEuler_acc", QuaternionToEuler)

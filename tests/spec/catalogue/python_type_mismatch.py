@@ -1,14 +1,8 @@
-# error: python_type_mismatch.py:17:1: type mismatch: 'QuatToEuler_acc.out0' sends geometry_msgs/msg/Point, but 'Euler_pub.in0' takes geometry_msgs/msg/Pose
+# error: python_type_mismatch.py:11:1: type mismatch: 'QuatToEuler_acc.out0' sends geometry_msgs/msg/Point, but 'Euler_pub.in0' takes geometry_msgs/msg/Pose
 # hint: none
 import rfc
+from parts import QuaternionToEuler
 
-QuaternionToEuler = rfc.external_accelerator(
-    "QuaternionToEuler",
-    kind="HLS",
-    sources="./accel.cpp",
-    inputs="geometry_msgs/Quaternion",
-    outputs="geometry_msgs/Point",
-)
 project = rfc.Project("Catalogue")
 sub = project.subscriber("Quaternion_sub", "geometry_msgs/Quaternion")
 acc = project.accelerator("QuatToEuler_acc", QuaternionToEuler)

@@ -1,14 +1,8 @@
-# error: python_unknown_message.py:13:7: unknown message type 'geometry_msgs/Quaternoin' for ROS 2 humble
+# error: python_unknown_message.py:7:7: unknown message type 'geometry_msgs/Quaternoin' for ROS 2 humble
 # hint: did you mean 'geometry_msgs/Quaternion' or 'geometry_msgs/QuaternionStamped' or 'geometry_msgs/Point'?
 import rfc
+from parts import QuaternionToEuler
 
-QuaternionToEuler = rfc.external_accelerator(
-    "QuaternionToEuler",
-    kind="HLS",
-    sources="./accel.cpp",
-    inputs="geometry_msgs/Quaternion",
-    outputs="geometry_msgs/Point",
-)
 project = rfc.Project("Catalogue")
 sub = project.subscriber("Quaternion_sub", "geometry_msgs/Quaternoin")
 acc = project.accelerator("QuatToEuler_acc", QuaternionToEuler)

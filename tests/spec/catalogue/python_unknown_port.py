@@ -1,14 +1,8 @@
-# error: python_unknown_port.py:16:1: block 'QuatToEuler_acc' has no input 'q'; its inputs are in0
+# error: python_unknown_port.py:10:1: block 'QuatToEuler_acc' has no input 'q'; its inputs are in0
 # hint: none
 import rfc
+from parts import QuaternionToEuler
 
-QuaternionToEuler = rfc.external_accelerator(
-    "QuaternionToEuler",
-    kind="HLS",
-    sources="./accel.cpp",
-    inputs="geometry_msgs/Quaternion",
-    outputs="geometry_msgs/Point",
-)
 project = rfc.Project("Catalogue")
 sub = project.subscriber("Quaternion_sub", "geometry_msgs/Quaternion")
 acc = project.accelerator("QuatToEuler_acc", QuaternionToEuler)

@@ -26,8 +26,8 @@ class ResolveTypes:
         """Return the design at stage TYPED."""
         try:
             types = types_of(design.project)
-        except RfcError as exc:
-            raise relocate(exc, design.project.at("distro")) from None
+        except RfcError as exc:  # the front-ends checked the distro: a user .msg is wrong
+            raise relocate(exc, design.project.at("msg_paths")) from None
         accelerators = tuple(_resolve_type(types, t) for t in design.accelerators)
         by_name: dict[str, AcceleratorType] = {}
         for accelerator in accelerators:

@@ -12,7 +12,7 @@ from pathlib import Path
 
 from rfc.errors import RfcError, SourceLocation, did_you_mean
 from rfc.ir.model import SCHEDULER_ALGORITHMS, AcceleratorKind, FunctionRef
-from rfc.messages.rosbags_adapter import DEFAULT_DISTRO, Middleware
+from rfc.messages.rosbags_adapter import DEFAULT_DISTRO, DISTROS, Middleware
 
 DEFAULT_FPGA_PART = "xc7z020clg400-1"
 DEFAULT_MIDDLEWARE = Middleware.ROS2
@@ -52,9 +52,17 @@ def middleware(text: str, location: SourceLocation) -> Middleware:
     return found
 
 
-def distro(name: str | None, chosen: Middleware) -> str:
-    """The type store to use: the one named, or the middleware's default."""
-    return name or DEFAULT_DISTRO[chosen]
+def distro(name: str | None, chosen: Middleware, location: SourceLocation) -> str:
+    """The type store to use: the one named (checked), or the middleware's default."""
+    if name is None:
+        return DEFAULT_DISTRO[chosen]
+    if name not in DISTROS[chosen]:
+        raise RfcError(
+            f"unknown {chosen.label} distro '{name}'; expected one of {', '.join(DISTROS[chosen])}",
+            location=location,
+            hint=did_you_mean(name, DISTROS[chosen]),
+        )
+    return name
 
 
 def fpga_family(part: str, location: SourceLocation) -> str:

@@ -155,7 +155,9 @@ class Project:
             fpga_part=fpga_part,
             fpga_family=common.fpga_family(as_text(fpga_part, "fpga_part", location), location),
             middleware=chosen,
-            distro=common.distro(distro, chosen),
+            distro=common.distro(
+                None if distro is None else as_text(distro, "distro", location), chosen, location
+            ),
             bus_width=common.bus_width(bus_width, location),
             clock_mhz=common.clock_mhz(clock_mhz, location),
             scheduler=common.scheduler(scheduler, location),

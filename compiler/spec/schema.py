@@ -75,8 +75,6 @@ _S, _I, _N, _M, _L, _SL = (
     ValueKind.LIST,
     ValueKind.STRING_LIST,
 )
-#: Middleware spellings accepted (case-insensitive); ``ROS`` is ROS 1, as in the paper.
-MIDDLEWARE_SPELLINGS = ("ROS", "ROS1", "ROS 1", "ROS2", "ROS 2")
 SUBSCRIBER_TYPE = "ROS>accelerator"
 PUBLISHER_TYPE = "accelerator>ROS"
 BUS_WIDTHS = (8, 32, 64)

@@ -98,7 +98,7 @@ class _YamlFrontend:
             fpga_part=part,
             fpga_family=common.fpga_family(part, reader.location("fpgaPart")),
             middleware=chosen,
-            distro=common.distro(reader.get("distro"), chosen),
+            distro=common.distro(reader.get("distro"), chosen, reader.location("distro")),
             bus_width=common.bus_width(
                 reader.get("busWidth", common.DEFAULT_BUS_WIDTH), reader.location("busWidth")
             ),

@@ -187,3 +187,15 @@ def test_error_location_uses_the_name_given(tmp_path):
         load_yaml_spec(path, "my/spec.yaml")
     assert str(caught.value.location) == "my/spec.yaml:2:9"
     assert "'blocks' of the spec must be a list, not a mapping" in caught.value.message
+
+
+def test_a_broken_user_definition_is_reported_at_msg_paths(tmp_path):
+    (tmp_path / "msgs" / "my_msgs" / "msg").mkdir(parents=True)
+    (tmp_path / "msgs" / "my_msgs" / "msg" / "Tick.msg").write_text("other_msgs/Thing thing\n")
+    design = system(tmp_path, "  msg_paths: [./msgs]")
+    from rfc.passes.pipeline import run_pipeline
+
+    with pytest.raises(RfcError) as caught:
+        run_pipeline(design)
+    assert "has type 'other_msgs/msg/Thing', which no definition provides" in caught.value.message
+    assert (caught.value.location.line, caught.value.location.column) == (3, 14)

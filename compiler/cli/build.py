@@ -13,7 +13,8 @@ from rfc.ir.model import BlockKind, Design
 build_app = typer.Typer()
 
 SpecArgument = Annotated[
-    Path, typer.Argument(help="The system specification: a .yaml file or a .py file.")
+    Path,
+    typer.Argument(metavar="SPEC", help="The system specification: a .yaml file or a .py file."),
 ]
 
 
@@ -30,7 +31,10 @@ def check(spec: SpecArgument) -> None:
 def build(
     spec: SpecArgument,
     output: Annotated[
-        Path, typer.Option("--output", "-o", help="Output directory (replaced as a whole).")
+        Path,
+        typer.Option(
+            "--output", "-o", metavar="DIR", help="Output directory (replaced as a whole)."
+        ),
     ] = Path("build"),
     emit_ir: Annotated[
         bool, typer.Option("--emit-ir", help="Write the holistic model to DIR/model.yaml.")

@@ -199,3 +199,21 @@ def test_a_broken_user_definition_is_reported_at_msg_paths(tmp_path):
         run_pipeline(design)
     assert "has type 'other_msgs/msg/Thing', which no definition provides" in caught.value.message
     assert (caught.value.location.line, caught.value.location.column) == (3, 14)
+
+
+@pytest.mark.parametrize(
+    ("written", "kind", "source"),
+    [
+        ("HLS", AcceleratorKind.HLS, "accel.cpp"),
+        ("vhdl", AcceleratorKind.VHDL, "accel.vhd"),
+        ("MyHDL", AcceleratorKind.MYHDL, "accel.py"),
+        ("ROS-SW", AcceleratorKind.ROS_SW, "accel.py"),
+    ],
+)
+def test_every_accelerator_kind(tmp_path, written, kind, source):
+    (tmp_path / source).write_text("# source\n")
+    text = QUATERNION_SYSTEM.format(project="", publisher="")
+    text = text.replace("type: HLS", f"type: {written}").replace("./accel.cpp", f"./{source}")
+    (accelerator,) = load_spec(write(tmp_path, text)).accelerators
+    assert accelerator.kind is kind
+    assert accelerator.top == ("Q2E" if kind is AcceleratorKind.MYHDL else None)

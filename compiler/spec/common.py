@@ -167,6 +167,14 @@ def source_file(text: str, base: Path, what: str, location: SourceLocation) -> P
     return path
 
 
+def message_directory(text: str, base: Path, location: SourceLocation) -> Path:
+    """Resolve a ``msg_paths`` entry against the spec's directory; it must be a directory."""
+    path = source_file(text, base, "message directory", location)
+    if not path.is_dir():
+        raise RfcError(f"message directory '{text}' is not a directory", location=location)
+    return path
+
+
 def check_source_suffixes(
     kind: AcceleratorKind, sources: list[tuple[Path, SourceLocation]], owner: str
 ) -> None:

@@ -144,12 +144,10 @@ class Project:
     ) -> None:
         location, base = call_site()
         chosen = common.middleware(as_text(middleware, "middleware", location), location)
-        directories = []
-        for text in as_texts(msg_paths, "msg_paths", location):
-            path = common.source_file(text, base, "message directory", location)
-            if not path.is_dir():
-                raise RfcError(f"message directory '{text}' is not a directory", location=location)
-            directories.append(path)
+        directories = [
+            common.message_directory(text, base, location)
+            for text in as_texts(msg_paths, "msg_paths", location)
+        ]
         self._settings = ProjectSettings(
             name=as_text(name, "project name", location),
             fpga_part=fpga_part,

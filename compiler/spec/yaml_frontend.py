@@ -105,7 +105,8 @@ class _YamlFrontend:
             clock_mhz=clock,
             scheduler=self._scheduler(reader),
             msg_paths=tuple(
-                self._directory(text, location) for text, location in reader.strings("msg_paths")
+                common.message_directory(text, self.base, location)
+                for text, location in reader.strings("msg_paths")
             ),
             spec_file=self.spec_file,
             location=reader.node.location,
@@ -120,12 +121,6 @@ class _YamlFrontend:
             reader = MappingReader(node, SCHEDULER, "scheduler")
             return common.scheduler(reader.get("algorithm"), reader.location("algorithm"))
         return common.scheduler(node.value, node.location)
-
-    def _directory(self, text: str, location: SourceLocation) -> Path:
-        path = common.source_file(text, self.base, "message directory", location)
-        if not path.is_dir():
-            raise RfcError(f"message directory '{text}' is not a directory", location=location)
-        return path
 
     def _check_middlewares(self, settings: ProjectSettings) -> None:
         if not self.stated:

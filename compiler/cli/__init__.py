@@ -12,6 +12,7 @@ import typer
 from rich.console import Console
 
 from rfc import __version__
+from rfc.cli.build import build_app
 from rfc.cli.msg import msg_app
 from rfc.errors import RfcError
 
@@ -23,6 +24,7 @@ app = typer.Typer(
     add_completion=False,
 )
 app.add_typer(msg_app, name="msg")
+app.add_typer(build_app)
 
 
 def _version(value: bool) -> None:

@@ -53,10 +53,11 @@ MULTIPLY_CYCLES = 10
 #: Register stages between issuing a product and summing it (operands, product).
 MULTIPLY_PIPELINE = 2
 #: Cycles from the input handshake until `out_valid` is high: the products, then two CORDIC
-#: passes (roll and yaw together, then pitch), each with a start and a capture cycle. One
-#: quaternion is in flight, so a new one is taken every LATENCY + 1 cycles while the consumer
-#: keeps `out_ready` high.
+#: passes (roll and yaw together, then pitch), each with a start and a capture cycle.
 LATENCY = MULTIPLY_CYCLES + MULTIPLY_PIPELINE + 2 * (CORDIC.latency + 2)
+#: One quaternion is in flight: after LATENCY cycles the result is offered for at least one
+#: cycle, and the core takes the next quaternion on the cycle after the result was taken.
+INITIATION_INTERVAL = LATENCY + 2
 
 
 def _round(value: int, drop: int) -> int:
@@ -107,12 +108,15 @@ def quat_to_euler(clk, rst, x, y, z, w, in_valid, in_ready, roll, pitch, yaw, ou
     """Quaternion (x, y, z, w) → Euler angles (roll, pitch, yaw), float64 in and out.
 
     Latency `LATENCY` (96) cycles from the input handshake to `out_valid`, the same for every
-    input; one quaternion in flight, so the initiation interval is LATENCY + 1 cycles. Results
-    stay on the outputs until taken (`out_valid` and `out_ready` high on a rising edge).
+    input; one quaternion in flight, so the initiation interval is `INITIATION_INTERVAL` (98)
+    cycles when results are taken at once. Results stay on the outputs until taken (`out_valid`
+    and `out_ready` high on a rising edge).
 
-    Accuracy on unit quaternions: within 1e-12 rad of exact arithmetic on the same inputs,
-    roll and yaw losing precision like 1e-15 / cos(pitch) next to gimbal lock (as any method
-    must). Inputs with a NaN, an infinity or a component outside [-2, 2) give quiet NaNs.
+    Accuracy on unit quaternions (docs/accelerators.md): within 2e-12 rad of NumPy's
+    double-precision formulas, and within 3e-9 rad where pitch is 1e-7 to 1e-3 rad from ±π/2;
+    roll and yaw lose precision like 1e-16 / cos(pitch) there, as the formulas do in any
+    arithmetic, and at gimbal lock only pitch is defined. A NaN, an infinity or a component
+    outside [-2, 2) gives quiet NaNs.
 
     Args:
         clk: Clock.

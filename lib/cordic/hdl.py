@@ -2,7 +2,7 @@
 
 Both have the same ports, the same latency (`CordicConfig.latency` cycles from the input
 handshake to `out_valid`) and the bits of `rfc.lib.cordic.model.vectoring`. The iterative block
-takes one input at a time (initiation interval latency + 1, about four adders and two barrel
+takes one input at a time (initiation interval latency + 2, about four adders and two barrel
 shifters of area); the pipelined one takes an input every cycle (one stage of three adders per
 iteration). Outputs stay put while `out_valid` is high and `out_ready` low.
 

@@ -20,10 +20,17 @@ from rfc.toolchain import run_cocotb
 
 @dataclass(frozen=True)
 class HandshakeRun:
-    """What the hardware produced: output values per port, and per-item latency in cycles."""
+    """What the hardware produced: outputs per port, per-item latency, and when items went in.
+
+    Attributes:
+        outputs: Bit patterns (cocotb) or values (MyHDL) per output port, one per item.
+        latencies: Cycles from each item's input handshake until out_valid was high.
+        accepted: Cycle of each item's input handshake (differences give the initiation interval).
+    """
 
     outputs: dict[str, list[int]]
     latencies: list[int]
+    accepted: list[int]
 
 
 def unsigned(value: int, width: int) -> int:
@@ -99,4 +106,4 @@ def run_handshake(
         "timeout": timeout_cycles,
     }
     result = _run(sources, top, "tests.support.handshake_bench", job, build, seed)
-    return HandshakeRun(result["outputs"], result["latencies"])
+    return HandshakeRun(result["outputs"], result["latencies"], result["accepted"])

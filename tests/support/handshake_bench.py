@@ -80,7 +80,9 @@ async def stream_items(dut):
             await Timer(1, unit="ns")
     dut.in_valid.value = 0
     latencies = [valid - start - 1 for start, valid in zip(taken_at, valid_at, strict=True)]
-    Path(job["result"]).write_text(json.dumps({"outputs": seen, "latencies": latencies}))
+    Path(job["result"]).write_text(
+        json.dumps({"outputs": seen, "latencies": latencies, "accepted": taken_at})
+    )
     mismatches = [
         f"item {i} {name}: got {got:#x}, expected {want:#x}"
         for name, wanted in expected.items()

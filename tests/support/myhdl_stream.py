@@ -38,6 +38,7 @@ def simulate_stream(
     count = len(next(iter(inputs.values())))
     seen: dict[str, list[int]] = {name: [] for name in outputs}
     latencies: list[int] = []
+    accepted: list[int] = []
     clk, rst = ports["clk"], ports["rst"]
 
     @block
@@ -65,12 +66,12 @@ def simulate_stream(
                 ports["out_ready"].next = out_ready
                 yield delay(5)
                 # Sample what the design sees at the coming edge, then make the edge.
-                accepted = offering and bool(ports["in_ready"].val)
+                handshake = offering and bool(ports["in_ready"].val)
                 out_valid = bool(ports["out_valid"].val)
                 results = {name: int(ports[name].val) for name in outputs}
                 clk.next = 1
                 edge += 1
-                if accepted:
+                if handshake:
                     taken_at.append(edge)
                     sent += 1
                     offering = False
@@ -89,10 +90,11 @@ def simulate_stream(
                 yield delay(5)
                 clk.next = 0
             latencies.extend(v - t - 1 for t, v in zip(taken_at, valid_at, strict=True))
+            accepted.extend(taken_at)
             raise StopSimulation
 
         dut = block_function(*arguments)
         return dut, run
 
     bench().run_sim(quiet=True)
-    return HandshakeRun(seen, latencies)
+    return HandshakeRun(seen, latencies, accepted)

@@ -108,3 +108,18 @@ def test_myhdl_simulation_equals_the_reference():
     )
     assert run.outputs == expected_bits(quaternions)
     assert set(run.latencies) == {example().LATENCY}
+
+
+def test_myhdl_takes_a_quaternion_every_initiation_interval():
+    quaternions = orientation_set()[:4]
+    ports = core_ports()
+    run = simulate_stream(
+        example().quat_to_euler,
+        core_arguments(ports),
+        ports,
+        as_bits(quaternions),
+        ["roll"],
+        idle=0.0,
+        backpressure=0.0,
+    )
+    assert set(np.diff(run.accepted)) == {example().INITIATION_INTERVAL}

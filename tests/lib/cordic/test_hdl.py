@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import random
 
+import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -110,3 +111,21 @@ def test_converted_vhdl_matches_the_model_under_backpressure(tmp_path, config, p
     assert min(run.latencies) == config.latency
     if not pipelined:
         assert set(run.latencies) == {config.latency}
+
+
+@pytest.mark.parametrize(("pipelined", "interval"), [(False, 14), (True, 1)])
+def test_initiation_interval(pipelined, interval):
+    config = CordicConfig(16, 12, 14)
+    ports = cordic_ports(config)
+    run = simulate_stream(
+        cordic_vectoring,
+        arguments(ports, config, pipelined),
+        ports,
+        {"x": [5, -6, 7, 0], "y": [1, 2, -3, 0]},
+        ["angle"],
+        idle=0.0,
+        backpressure=0.0,
+    )
+    # Iterative: the result is offered for a cycle, then the block is idle for one.
+    assert set(np.diff(run.accepted)) == {interval}
+    assert set(run.latencies) == {config.latency}

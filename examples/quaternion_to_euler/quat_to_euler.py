@@ -47,8 +47,12 @@ SIN_FRAC = COMPONENT.width - 6
 HALF_GAIN_FRAC = COMPONENT.width - 1
 HALF_GAIN = CORDIC.gain(HALF_GAIN_FRAC - 1)
 
-#: Products issued one per cycle: wy and zx first, so that sin(pitch) is summed when the tenth
-#: product, its scaling by gain/2, needs it.
+#: Products issued one per cycle, by their operands: components x, y, z, w, then sin(pitch) and
+#: gain/2. wy and zx come first, so that sin(pitch) is summed when the tenth product, its
+#: scaling, needs it. The tables run on past the tenth entry (the step counter does; unused).
+X, Y, Z, W, SIN, GAIN = range(6)
+FIRST_OPERANDS = (W, Z, W, Y, X, Y, Z, W, X, SIN, SIN, SIN, SIN, SIN, SIN, SIN)
+SECOND_OPERANDS = (Y, X, X, Z, X, Y, Z, Z, Y, GAIN, GAIN, GAIN, GAIN, GAIN, GAIN, GAIN)
 MULTIPLY_CYCLES = 10
 #: Register stages between issuing a product and summing it (operands, product).
 MULTIPLY_PIPELINE = 2
@@ -159,7 +163,13 @@ def quat_to_euler(clk, rst, x, y, z, w, in_valid, in_ready, roll, pitch, yaw, ou
     sum_sin, sum_roll_b, sum_roll_a, sum_yaw_a, sum_yaw_b = (_signed(SUM_WIDTH) for _ in range(5))
     scaled_sin = _signed(2 * COMPONENT.width)
     sin_pitch = COMPONENT.signal()
-    half_gain_rom = (HALF_GAIN,)
+    first, second = Signal(intbv(0, min=0, max=6)), Signal(intbv(0, min=0, max=6))
+    selected_a, selected_b = COMPONENT.signal(), COMPONENT.signal()
+    operands = (qx, qy, qz, qw, sin_pitch)
+    selectors = [
+        select_operand(first, *operands, selected_a),
+        select_operand(second, *operands, selected_b),
+    ]
 
     # CORDICs: A does roll then pitch, B does yaw.
     a_in_valid, a_in_ready, a_out_valid, a_out_ready = (Signal(bool(0)) for _ in range(4))
@@ -212,6 +222,11 @@ def quat_to_euler(clk, rst, x, y, z, w, in_valid, in_ready, roll, pitch, yaw, ou
     last_accumulate = MULTIPLY_CYCLES + MULTIPLY_PIPELINE - 1
 
     @always_comb
+    def operand_indices():
+        first.next = FIRST_OPERANDS[step]
+        second.next = SECOND_OPERANDS[step]
+
+    @always_comb
     def flags():
         out_of_range.next = over_x or over_y or over_z or over_w or nan_x or nan_y or nan_z or nan_w
 
@@ -249,38 +264,8 @@ def quat_to_euler(clk, rst, x, y, z, w, in_valid, in_ready, roll, pitch, yaw, ou
     @always_seq(clk.posedge, reset=rst)
     def multiply():
         if state == state_t.PRODUCTS:
-            gain = intbv(0, min=COMPONENT.min_raw, max=COMPONENT.max_raw + 1)
-            gain[:] = half_gain_rom[0]
-            if step == 0:
-                operand_a.next = qw
-                operand_b.next = qy
-            elif step == 1:
-                operand_a.next = qz
-                operand_b.next = qx
-            elif step == 2:
-                operand_a.next = qw
-                operand_b.next = qx
-            elif step == 3:
-                operand_a.next = qy
-                operand_b.next = qz
-            elif step == 4:
-                operand_a.next = qx
-                operand_b.next = qx
-            elif step == 5:
-                operand_a.next = qy
-                operand_b.next = qy
-            elif step == 6:
-                operand_a.next = qz
-                operand_b.next = qz
-            elif step == 7:
-                operand_a.next = qw
-                operand_b.next = qz
-            elif step == 8:
-                operand_a.next = qx
-                operand_b.next = qy
-            else:
-                operand_a.next = sin_pitch
-                operand_b.next = gain
+            operand_a.next = selected_a
+            operand_b.next = selected_b
             product.next = operand_a * operand_b
 
     @always_seq(clk.posedge, reset=rst)
@@ -359,9 +344,36 @@ def quat_to_euler(clk, rst, x, y, z, w, in_valid, in_ready, roll, pitch, yaw, ou
         cordic_a,
         cordic_b,
         to_float,
+        selectors,
+        operand_indices,
         flags,
         cordic_inputs,
         multiply,
         control,
         outputs,
     )
+
+
+@block
+def select_operand(index, x, y, z, w, sin_pitch, operand):
+    """One multiplier operand: a component, sin(pitch) or the constant gain/2 (by `index`)."""
+    gain_rom = (HALF_GAIN,)
+
+    @always_comb
+    def select():
+        gain = intbv(0, min=COMPONENT.min_raw, max=COMPONENT.max_raw + 1)
+        gain[:] = gain_rom[0]
+        if index == X:
+            operand.next = x
+        elif index == Y:
+            operand.next = y
+        elif index == Z:
+            operand.next = z
+        elif index == W:
+            operand.next = w
+        elif index == SIN:
+            operand.next = sin_pitch
+        else:
+            operand.next = gain
+
+    return select

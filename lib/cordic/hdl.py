@@ -73,8 +73,8 @@ def cordic_iterative(
     iterations = config.iterations
     internal = config.internal_width
     guard = config.guard
-    # Address `iterations` holds π: the step counter rests there while idle, ready for loading.
-    rom = (*config.atan_table, config.pi)
+    # The step counter rests at `iterations` while idle; that address reads 0.
+    rom = (*config.atan_table, 0)
     xs = _signed(internal)
     ys = _signed(internal)
     zs = _signed(config.angle_width)
@@ -82,6 +82,10 @@ def cordic_iterative(
     full = Signal(bool(0))
     level = Signal(bool(0))
     step_angle = _signed(config.angle_width)
+    x_turned, y_turned = _signed(internal), _signed(internal)
+    start_angle = _signed(config.angle_width)
+    y_zero = Signal(bool(0))
+    turn = cordic_prerotation(x, y, x_turned, y_turned, start_angle, y_zero, config)
 
     @always_comb
     def lookup():
@@ -107,22 +111,10 @@ def cordic_iterative(
             if out_ready:
                 full.next = False
         elif in_valid:
-            xi = intbv(0, min=-(1 << (internal - 1)), max=1 << (internal - 1))
-            yi = intbv(0, min=-(1 << (internal - 1)), max=1 << (internal - 1))
-            xi[:] = x
-            yi[:] = y
-            if x < 0:
-                xi[:] = -xi
-                yi[:] = -yi
-                if y >= 0:
-                    zs.next = step_angle
-                else:
-                    zs.next = -step_angle
-            else:
-                zs.next = 0
-            xs.next = xi << guard
-            ys.next = yi << guard
-            level.next = y == 0
+            xs.next = x_turned
+            ys.next = y_turned
+            zs.next = start_angle
+            level.next = y_zero
             step.next = 0
 
     @always_comb
@@ -132,7 +124,7 @@ def cordic_iterative(
         magnitude.next = xs >> guard
         angle.next = zs
 
-    return lookup, iterate, outputs
+    return turn, lookup, iterate, outputs
 
 
 @block
@@ -153,31 +145,19 @@ def cordic_pipelined(
     x_first, y_first, z_first, valid_first, level_first = xs[0], ys[0], zs[0], valid[0], level[0]
     last = count - 1
     x_last, z_last, valid_last = xs[last], zs[last], valid[last]
-    pi_rom = (config.pi,)
-    half_turn_bits = config.angle_width
+    x_turned, y_turned = _signed(internal), _signed(internal)
+    start_angle = _signed(config.angle_width)
+    y_zero = Signal(bool(0))
+    turn = cordic_prerotation(x, y, x_turned, y_turned, start_angle, y_zero, config)
 
     @always_seq(clk.posedge, reset=rst)
     def prerotate():
         if advance:
-            xi = intbv(0, min=-(1 << (internal - 1)), max=1 << (internal - 1))
-            yi = intbv(0, min=-(1 << (internal - 1)), max=1 << (internal - 1))
-            half_turn = intbv(0, min=-(1 << (half_turn_bits - 1)), max=1 << (half_turn_bits - 1))
-            half_turn[:] = pi_rom[0]
-            xi[:] = x
-            yi[:] = y
-            if x < 0:
-                xi[:] = -xi
-                yi[:] = -yi
-                if y >= 0:
-                    z_first.next = half_turn
-                else:
-                    z_first.next = -half_turn
-            else:
-                z_first.next = 0
-            x_first.next = xi << guard
-            y_first.next = yi << guard
+            x_first.next = x_turned
+            y_first.next = y_turned
+            z_first.next = start_angle
+            level_first.next = y_zero
             valid_first.next = in_valid
-            level_first.next = y == 0
 
     stages = [
         cordic_stage(
@@ -207,7 +187,44 @@ def cordic_pipelined(
         magnitude.next = x_last >> guard
         angle.next = z_last
 
-    return prerotate, stages, outputs
+    return turn, prerotate, stages, outputs
+
+
+@block
+def cordic_prerotation(x, y, x_turned, y_turned, start_angle, y_zero, config):
+    """Inputs as the iterations start from them (combinational).
+
+    Negative x is turned by π (both negated; the angle starts at +π when y >= 0, else -π) so
+    that the micro-rotations only cover [-π/2, π/2]; x and y gain the guard bits; `y_zero`
+    marks level inputs, whose angle is exact.
+    """
+    internal = config.internal_width
+    guard = config.guard
+    angle_bits = config.angle_width
+    pi_rom = (config.pi,)
+
+    @always_comb
+    def turn():
+        xi = intbv(0, min=-(1 << (internal - 1)), max=1 << (internal - 1))
+        yi = intbv(0, min=-(1 << (internal - 1)), max=1 << (internal - 1))
+        half_turn = intbv(0, min=-(1 << (angle_bits - 1)), max=1 << (angle_bits - 1))
+        half_turn[:] = pi_rom[0]
+        xi[:] = x
+        yi[:] = y
+        if x < 0:
+            xi[:] = -xi
+            yi[:] = -yi
+            if y >= 0:
+                start_angle.next = half_turn
+            else:
+                start_angle.next = -half_turn
+        else:
+            start_angle.next = 0
+        x_turned.next = xi << guard
+        y_turned.next = yi << guard
+        y_zero.next = y == 0
+
+    return turn
 
 
 @block

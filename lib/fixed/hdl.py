@@ -70,28 +70,23 @@ def float_to_fixed(bits, raw, overflow, invalid, fmt: FixedFormat):
         too_large = bool(quotient[width] or quotient[width - 1])
         if negative and not quotient[width] and quotient[width - 1 : 0] == 0:
             too_large = False
-        limit = intbv(0)[width + 1 :]
-        limit[width - 1] = 1
-        if not negative:
-            limit[:] = limit - 1
-        if exponent == EXPONENT_ALL_ONES and bits[MANTISSA_BITS:0] != 0:
-            raw.next = 0
-            overflow.next = False
-            invalid.next = True
-        elif exponent == EXPONENT_ALL_ONES or amount < 0 or too_large:
-            if negative:
-                raw.next = -limit
-            else:
-                raw.next = limit
-            overflow.next = True
-            invalid.next = False
+        nan = bool(exponent == EXPONENT_ALL_ONES and bits[MANTISSA_BITS:0] != 0)
+        saturate = bool(exponent == EXPONENT_ALL_ONES or amount < 0 or too_large)
+        magnitude = intbv(0)[width + 1 :]
+        if nan:
+            magnitude[:] = 0
+        elif saturate:
+            magnitude[width - 1] = 1
+            if not negative:
+                magnitude[:] = magnitude - 1
         else:
-            if negative:
-                raw.next = -quotient
-            else:
-                raw.next = quotient
-            overflow.next = False
-            invalid.next = False
+            magnitude[:] = quotient
+        if negative:
+            raw.next = -magnitude
+        else:
+            raw.next = magnitude
+        overflow.next = saturate and not nan
+        invalid.next = nan
 
     return convert
 

@@ -96,30 +96,22 @@ def test_ghdl_equals_the_reference_on_every_odom_orientation(tmp_path, half):
     check_against_numpy(hardware, quaternions, example().numpy_reference)
 
 
+def simulate_in_myhdl(quaternions: np.ndarray, **stream):
+    ports = core_ports()
+    arguments = core_arguments(ports)
+    outputs = ["roll", "pitch", "yaw"]
+    return simulate_stream(
+        example().quat_to_euler, arguments, ports, as_bits(quaternions), outputs, **stream
+    )
+
+
 def test_myhdl_simulation_equals_the_reference():
     quaternions = with_out_of_domain(orientation_set()[::40])
-    ports = core_ports()
-    run = simulate_stream(
-        example().quat_to_euler,
-        core_arguments(ports),
-        ports,
-        as_bits(quaternions),
-        ["roll", "pitch", "yaw"],
-    )
+    run = simulate_in_myhdl(quaternions)
     assert run.outputs == expected_bits(quaternions)
     assert set(run.latencies) == {example().LATENCY}
 
 
 def test_myhdl_takes_a_quaternion_every_initiation_interval():
-    quaternions = orientation_set()[:4]
-    ports = core_ports()
-    run = simulate_stream(
-        example().quat_to_euler,
-        core_arguments(ports),
-        ports,
-        as_bits(quaternions),
-        ["roll"],
-        idle=0.0,
-        backpressure=0.0,
-    )
+    run = simulate_in_myhdl(orientation_set()[:4], idle=0.0, backpressure=0.0)
     assert set(np.diff(run.accepted)) == {example().INITIATION_INTERVAL}

@@ -117,7 +117,7 @@ def quat_to_euler(clk, rst, x, y, z, w, in_valid, in_ready, roll, pitch, yaw, ou
     and `out_ready` high on a rising edge).
 
     Accuracy on unit quaternions (docs/accelerators.md): within 2e-12 rad of NumPy's
-    double-precision formulas, and within 3e-9 rad where pitch is 1e-7 to 1e-3 rad from ±π/2;
+    double-precision formulas, and within 5e-9 rad where pitch is 1e-7 to 1e-3 rad from ±π/2;
     roll and yaw lose precision like 1e-16 / cos(pitch) there, as the formulas do in any
     arithmetic, and at gimbal lock only pitch is defined. A NaN, an infinity or a component
     outside [-2, 2) gives quiet NaNs.

@@ -386,15 +386,21 @@ def read_bag(
         raise RfcError(f"cannot read bag '{path}': {exc}") from None
 
 
-def bag_topics(path: str | Path, types: MessageTypes) -> dict[str, str]:
-    """Return the topics of a bag with their canonical message types.
+def bag_topics(path: str | Path, types: MessageTypes, *, counts: bool = False) -> dict[str, Any]:
+    """Return the topics of a bag with their canonical message types (or message counts).
 
     Raises:
         RfcError: The bag is missing or unreadable.
     """
     try:
         with AnyReader([Path(path)], default_typestore=types._store) as reader:
-            return {c.topic: c.msgtype for c in reader.connections}
+            found: dict[str, Any] = {}
+            for connection in reader.connections:
+                if counts:
+                    found[connection.topic] = found.get(connection.topic, 0) + connection.msgcount
+                else:
+                    found[connection.topic] = connection.msgtype
+            return found
     except FileNotFoundError:
         raise RfcError(f"bag '{path}' does not exist") from None
     except AnyReaderError as exc:
@@ -403,6 +409,32 @@ def bag_topics(path: str | Path, types: MessageTypes) -> dict[str, str]:
 
 #: Bag formats rfc writes, by the suffix of the path asked for.
 BAG_SUFFIXES = {".bag": Middleware.ROS1, ".mcap": Middleware.ROS2, ".db3": Middleware.ROS2}
+
+
+def check_bag_path(path: str | Path, middleware: Middleware) -> Middleware:
+    """Check that a bag of `middleware` messages can be written at `path`.
+
+    Raises:
+        RfcError: An unknown suffix, one of the other middleware, a directory, or a missing
+            parent directory.
+    """
+    target = Path(path)
+    chosen = BAG_SUFFIXES.get(target.suffix)
+    if chosen is None:
+        raise RfcError(
+            f"cannot tell the bag format of '{target}'",
+            hint="end it in .bag (ROS 1), .mcap or .db3 (ROS 2)",
+        )
+    if chosen is not middleware:
+        raise RfcError(
+            f"'{target}' would be a {chosen.label} bag, but the messages are {middleware.label}",
+            hint="end it in .bag" if middleware is Middleware.ROS1 else "end it in .mcap or .db3",
+        )
+    if target.is_dir():
+        raise RfcError(f"'{target}' is a directory; name a bag file")
+    if not target.parent.is_dir():
+        raise RfcError(f"the directory of '{target}' does not exist")
+    return chosen
 
 
 def write_bag(

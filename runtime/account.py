@@ -8,6 +8,7 @@ accelerator, or is counted as dropped where it was dropped and why. Reasons:
 - ``protocol:<reason>``: PL→PS chunks breaking the wire protocol (docs/protocol.md), counted
   per message lost; ``protocol:id`` is a chunk of a publisher id the system does not have,
   ``protocol:unfinished`` a message still incomplete when the run ended.
+- ``unsent``: it still waited in a callback queue when the run ended.
 - ``superseded``: a newer message replaced it on an input of a multi-input ROS-SW accelerator
   before that accelerator fired; ``unmatched``: it still waited there when the run ended.
 """

@@ -156,6 +156,8 @@ class Runtime:
 
     def finish(self) -> None:
         """End the run: count what is still unfinished or waiting as dropped."""
+        while (left := self.scheduler.pop()) is not None:
+            self.account.drop(self.plan.subscriber_names[left[0]], "unsent")
         for ident in self._reassembler.pending():
             self.account.drop(self.plan.publisher_names[ident], "protocol:unfinished")
         for name, accelerator in self.software.items():

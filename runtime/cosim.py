@@ -8,10 +8,11 @@ stream (with random idle cycles); a sink on the PL→PS stream (with random back
 each transfer to the runtime, which reassembles and routes it. Outputs of the logic take the
 stamp of the newest input offered so far.
 
-Idle time is skipped: when nothing waits, nothing moves and the logic has been quiet for the
-job's drain window, the clock jumps to the next arrival. After the last message the run ends
-once the system is idle the same way. Results go back through files: the published messages
-(`rfc.runtime.records`), the account as JSON, and the progress (messages offered so far).
+Idle time is skipped (`rfc.runtime.arrivals`): when nothing waits, nothing moves and the logic
+has been quiet for the job's drain window, the next message arrives at once. After the last
+message the run ends once the system is idle the same way. Results go back through files: the
+published messages (`rfc.runtime.records`), the account as JSON, and the progress (messages
+offered so far).
 """
 
 from __future__ import annotations
@@ -30,12 +31,10 @@ from cocotbext.axi import AxiStreamBus, AxiStreamSink, AxiStreamSource
 
 from rfc.driver import compile_spec
 from rfc.messages.rosbags_adapter import message_types, read_bag
+from rfc.runtime.arrivals import IDLE_FRACTION, ArrivalClock
 from rfc.runtime.core import Published, QueueConfig, QueuePolicy, Runtime
 from rfc.runtime.plan import RuntimePlan
 from rfc.runtime.records import write_records
-
-#: Fraction of cycles the DMA source idles and the sink applies backpressure.
-IDLE_FRACTION = 0.2
 
 
 class _Replay:
@@ -120,13 +119,11 @@ class _Replay:
             (self.job["bag"],),
         )
         progress = Path(self.job["progress"])
-        first: int | None = None
-        warp = 0
+        arrivals = ArrivalClock(self.job["clock_mhz"])
         for count, message in enumerate(read_bag(self.job["bag"], types, self.job["topics"]), 1):
-            first = message.timestamp_ns if first is None else first
-            due = warp + (message.timestamp_ns - first) * self.job["clock_mhz"] // 1000
+            due = arrivals.due(message.timestamp_ns)
             await self.run_until(due)
-            warp += max(0, self.cycles() - due)
+            arrivals.offered(self.cycles(), due)
             self.stamp = message.timestamp_ns
             self.published += self.runtime.offer(
                 self.runtime_topic(message.topic), message.data, self.stamp, self.cycles()

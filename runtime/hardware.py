@@ -78,7 +78,7 @@ def simulate_with_ghdl(
     design: Design,
     bag: Path,
     topic_names: Mapping[str, str],
-    provider: TopProvider,
+    top: SimulationTop,
     workdir: Path,
     *,
     queues: QueueConfig,
@@ -92,7 +92,7 @@ def simulate_with_ghdl(
         design: The holistic model (its spec file is compiled again in the simulator).
         bag: The input bag.
         topic_names: Bag topic → the spec's topic, for every topic to replay.
-        provider: Makes the logic's top-level.
+        top: The logic's top-level (from a `TopProvider`).
         workdir: Scratch folder (VHDL, simulation build, results).
         queues: The processor's callback queues.
         drain_cycles: Cycles of silence after which the system is idle.
@@ -102,7 +102,6 @@ def simulate_with_ghdl(
     Raises:
         CosimError: The simulation failed (a bug in rfc or in the logic).
     """
-    top = provider(design, workdir / "hdl")
     job = {
         "spec": str(design.project.spec_file),
         "bag": str(bag),

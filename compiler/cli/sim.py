@@ -11,7 +11,9 @@ from __future__ import annotations
 import json
 import sys
 import tempfile
-from dataclasses import replace
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass, replace
+from enum import StrEnum
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated
 
@@ -26,7 +28,19 @@ from rfc.runtime.core import DEFAULT_DEPTH, QueuePolicy
 if TYPE_CHECKING:
     from rfc.messages.rosbags_adapter import BagMessage, MessageTypes
     from rfc.runtime.account import Account
+    from rfc.runtime.core import Published, Runtime
+    from rfc.runtime.hardware import SimulationTop
     from rfc.runtime.plan import RuntimePlan
+
+
+class Backend(StrEnum):
+    """Which simulator runs the logic."""
+
+    GHDL = "ghdl"
+    """The VHDL of the whole logic in GHDL, the runtime in cocotb (any system)."""
+    MYHDL = "myhdl"
+    """MyHDL's simulator, in process (logic whose top provider gives a MyHDL design)."""
+
 
 sim_app = typer.Typer()
 
@@ -42,8 +56,8 @@ def sim(
         typer.Option("--out", metavar="OUT", help="Output bag: .bag (ROS 1), .mcap or .db3."),
     ],
     backend: Annotated[
-        str, typer.Option("--backend", help="Simulator of the logic: ghdl.")
-    ] = "ghdl",
+        Backend, typer.Option("--backend", help="Simulator of the logic (when it has any).")
+    ] = Backend.GHDL,
     queue: Annotated[
         QueuePolicy,
         typer.Option("--queue", help="Callback queues: one per subscriber, or ROS's shared one."),
@@ -65,21 +79,10 @@ def sim(
 ) -> None:
     """Replay a bag through the whole system and write each publisher's messages to OUT."""
     from rfc.driver import compile_spec
-    from rfc.messages.rosbags_adapter import (
-        check_bag_path,
-        message_types,
-        read_bag,
-        write_bag,
-    )
+    from rfc.messages.rosbags_adapter import check_bag_path, message_types, write_bag
     from rfc.runtime.core import QueueConfig, Runtime
-    from rfc.runtime.hardware import DEFAULT_TOP_PROVIDER, load_top_provider, simulate_with_ghdl
     from rfc.runtime.plan import RuntimePlan
-    from rfc.runtime.replay import replay
 
-    if backend != "ghdl":
-        raise typer.BadParameter(
-            f"'{backend}' is not a backend; choose ghdl", param_hint="--backend"
-        )
     design = compile_spec(str(spec))
     project = design.project
     check_bag_path(out, project.middleware)
@@ -92,10 +95,8 @@ def sim(
     topic_names = _match_topics(plan, bag, types)
     queues = QueueConfig(queue, depth)
     runtime = Runtime(plan, queues)  # finds every ROS-SW function before anything runs
+    run = _Run(bag, types, topic_names, runtime, backend, drain_cycles, seed, top_provider)
     console = Console(stderr=True, highlight=False)
-    from rfc.messages.rosbags_adapter import bag_topics
-
-    total = sum(bag_topics(bag, types, counts=True)[t] for t in topic_names)
     with Progress(
         TextColumn("replaying"),
         BarColumn(),
@@ -105,30 +106,8 @@ def sim(
         transient=True,
         disable=as_json or not console.is_terminal,
     ) as progress:
-        task = progress.add_task("replay", total=total)
-
-        def advance(done: int) -> None:
-            progress.update(task, completed=done)
-
-        if plan.has_logic:
-            provider = load_top_provider(top_provider or DEFAULT_TOP_PROVIDER)
-            with tempfile.TemporaryDirectory(prefix="rfc-sim-") as scratch:
-                run = simulate_with_ghdl(
-                    design,
-                    bag.resolve(),
-                    topic_names,
-                    provider,
-                    Path(scratch),
-                    queues=queues,
-                    drain_cycles=drain_cycles,
-                    seed=seed,
-                    progress=advance,
-                )
-            published, account = run.published, run.account
-        else:
-            messages = (_renamed(m, topic_names) for m in read_bag(bag, types, sorted(topic_names)))
-            published = replay(runtime, messages, None, advance)
-            account = runtime.account
+        task = progress.add_task("replay", total=run.total())
+        published, account = run.execute(lambda done: progress.update(task, completed=done))
     write_bag(
         out,
         types,
@@ -139,6 +118,79 @@ def sim(
         print(json.dumps({"out": str(out), **account.to_json()}, indent=1))
     else:
         _print_account(Console(highlight=False), account, plan, out)
+
+
+@dataclass(frozen=True)
+class _Run:
+    """One replay: the bag's messages of the spec's topics through the chosen backend."""
+
+    bag: Path
+    types: MessageTypes
+    topic_names: dict[str, str]
+    runtime: Runtime
+    backend: Backend
+    drain_cycles: int
+    seed: int
+    top_provider: str | None
+
+    def total(self) -> int:
+        from rfc.messages.rosbags_adapter import bag_topics
+
+        counts = bag_topics(self.bag, self.types, counts=True)
+        return sum(counts[topic] for topic in self.topic_names)
+
+    def messages(self) -> Iterator[BagMessage]:
+        from rfc.messages.rosbags_adapter import read_bag
+
+        for message in read_bag(self.bag, self.types, sorted(self.topic_names)):
+            yield replace(message, topic=self.topic_names[message.topic])
+
+    def execute(self, progress: Callable[[int], None]) -> tuple[list[Published], Account]:
+        from rfc.runtime.hardware import DEFAULT_TOP_PROVIDER, load_top_provider
+        from rfc.runtime.replay import replay
+
+        runtime, design = self.runtime, self.runtime.plan.design
+        if not runtime.plan.has_logic:
+            return replay(runtime, self.messages(), None, progress), runtime.account
+        provider = load_top_provider(self.top_provider or DEFAULT_TOP_PROVIDER)
+        with tempfile.TemporaryDirectory(prefix="rfc-sim-") as scratch:
+            top = provider(design, Path(scratch) / "hdl")
+            if self.backend is Backend.MYHDL:
+                return self._myhdl(top, progress), runtime.account
+            from rfc.runtime.hardware import simulate_with_ghdl
+
+            run = simulate_with_ghdl(
+                design,
+                self.bag.resolve(),
+                self.topic_names,
+                top,
+                Path(scratch),
+                queues=runtime.queues,
+                drain_cycles=self.drain_cycles,
+                seed=self.seed,
+                progress=progress,
+            )
+        return run.published, run.account
+
+    def _myhdl(self, top: SimulationTop, progress: Callable[[int], None]) -> list[Published]:
+        from rfc.runtime.myhdl_sim import simulate_with_myhdl
+
+        factory = getattr(top, "myhdl", None)
+        if factory is None:
+            raise RfcError(
+                "the logic of this system is not a MyHDL design, so it cannot run in MyHDL",
+                hint="use --backend ghdl",
+            )
+        return simulate_with_myhdl(
+            factory,
+            top.bus_width,
+            self.runtime,
+            self.messages(),
+            clock_mhz=self.runtime.plan.design.project.clock_mhz,
+            drain_cycles=self.drain_cycles,
+            seed=self.seed,
+            progress=progress,
+        )
 
 
 def _match_topics(plan: RuntimePlan, bag: Path, types: MessageTypes) -> dict[str, str]:
@@ -169,10 +221,6 @@ def _match_topics(plan: RuntimePlan, bag: Path, types: MessageTypes) -> dict[str
             )
         names[found] = topic_input.topic
     return names
-
-
-def _renamed(message: BagMessage, topic_names: dict[str, str]) -> BagMessage:
-    return replace(message, topic=topic_names[message.topic])
 
 
 def _print_account(console: Console, account: Account, plan: RuntimePlan, out: Path) -> None:

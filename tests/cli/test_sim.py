@@ -142,3 +142,60 @@ def test_a_bag_type_other_than_the_subscribers_is_refused(tmp_path):
         "geometry_msgs/msg/PoseWithCovarianceStamped" in result.stderr
     )
     assert not (tmp_path / "o.mcap").exists()
+
+
+def test_myhdl_and_ghdl_backends_give_the_same_bag(tmp_path):
+    types = message_types("ros2")
+    messages = pose_messages(types, 8)
+    bag = tmp_path / "pairs.mcap"
+    # pairs 100 ns apart: the second of each waits in its queue while the first is in the logic
+    stamps = [
+        m.timestamp_ns if i % 2 == 0 else messages[i - 1].timestamp_ns + 100
+        for i, m in enumerate(messages)
+    ]
+    write_bag(
+        bag,
+        types,
+        {"/amcl_pose": POSE},
+        [(m.topic, s, m.data) for m, s in zip(messages, stamps, strict=True)],
+    )
+    spec = system_copy(tmp_path, "pose_mixed.yaml")
+    accounts = {
+        backend: sim(spec, bag, tmp_path / f"{backend}.mcap", *ECHO, "--backend", backend)
+        for backend in ("ghdl", "myhdl")
+    }
+    assert accounts["ghdl"] | {"out": ""} == accounts["myhdl"] | {"out": ""}
+    assert accounts["ghdl"]["published"] == {"/pose_cleared": 8}
+    assert messages_of(tmp_path / "ghdl.mcap") == messages_of(tmp_path / "myhdl.mcap")
+
+
+def test_myhdl_backend_needs_a_myhdl_design(tmp_path, small_bag):
+    spec = system_copy(tmp_path, "pose_mixed.yaml")
+    result = run_rfc(
+        "sim",
+        spec,
+        "--bag",
+        small_bag,
+        "--out",
+        tmp_path / "o.mcap",
+        "--backend",
+        "myhdl",
+        "--top-provider",
+        "tests.runtime.support:vhdl_only_top",
+        cwd=ROOT,
+    )
+    assert result.returncode == 1
+    assert "is not a MyHDL design, so it cannot run in MyHDL" in result.stderr
+    assert not (tmp_path / "o.mcap").exists()
+
+
+def test_without_the_whole_system_generation_hardware_cannot_be_simulated(tmp_path, small_bag):
+    spec = system_copy(tmp_path, "pose_mixed.yaml")
+    result = run_rfc("sim", spec, "--bag", small_bag, "--out", tmp_path / "o.mcap", cwd=ROOT)
+    try:
+        import rfc.lower.hardware  # noqa: F401
+    except ImportError:
+        assert result.returncode == 1
+        assert "needs the whole-system hardware generation" in result.stderr
+    else:
+        pytest.skip("rfc.lower.hardware exists: the default top provider is tested with it")

@@ -12,8 +12,11 @@ to finish the message). Chunks of unknown ids are dropped.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
+from functools import partial
 from pathlib import Path
+from typing import Any
 
 from myhdl import ResetSignal, Signal, always_comb, always_seq, block, concat, enum, intbv
 
@@ -143,7 +146,8 @@ def echo_logic(
                         state.next = state_t.PAYLOAD
         elif state == state_t.PAYLOAD:
             if s_axis_mm2s_tvalid and m_axis_s2mm_tready:
-                chunk_beats.next = chunk_beats + 1
+                if cut_beats != 0:
+                    chunk_beats.next = chunk_beats + 1
                 if remaining > lanes:
                     remaining.next = remaining - lanes
                 else:
@@ -186,11 +190,15 @@ def echo_instance(width: int, routes: tuple[int, ...], cut_beats: int = 0):
 
 @dataclass(frozen=True)
 class FixtureTop:
-    """What `rfc.lower.hardware.simulation_top` returns: entity, VHDL sources, bus width."""
+    """What `rfc.lower.hardware.simulation_top` returns: entity, VHDL sources, bus width.
+
+    `myhdl` makes the same logic as a MyHDL block from the port signals (``--backend myhdl``).
+    """
 
     top: str
     sources: list[Path]
     bus_width: int
+    myhdl: Callable[..., Any]
 
 
 def route_table(design: Design) -> tuple[int, ...]:
@@ -204,16 +212,12 @@ def simulation_top(design: Design, directory: Path, cut_beats: int = 3) -> Fixtu
     """Convert the echo logic of a pass-through design to VHDL in `directory`."""
     width = design.project.bus_width
     name = "echo_top"
+    routes = route_table(design)
     files = convert_myhdl(
-        echo_instance(width, route_table(design), cut_beats),
+        echo_instance(width, routes, cut_beats),
         name,
         directory,
         verilog=False,
         header="rfc test fixture: pass-through logic",
     )
-    return FixtureTop(name, files, width)
-
-
-def simulation_top_uncut(design: Design, directory: Path) -> FixtureTop:
-    """The same logic without cutting messages (a non-preemptive scheduler's behaviour)."""
-    return simulation_top(design, directory, cut_beats=0)
+    return FixtureTop(name, files, width, partial(echo_logic, routes=routes, cut_beats=cut_beats))

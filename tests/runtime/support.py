@@ -45,3 +45,13 @@ def pose_messages(types: MessageTypes, count: int, topic: str = "/amcl_pose") ->
         data = types.serialize(types.build(name, tree), name)
         messages.append(BagMessage(topic, name, 1_000_000_000 + index * 10_000_000, data))
     return messages
+
+
+def vhdl_only_top(design, directory):
+    """A top provider whose logic exists only as VHDL (as generated hardware may)."""
+    from tests.runtime.echo_top import simulation_top
+
+    top = simulation_top(design, directory)
+    return type(
+        "VhdlTop", (), {"top": top.top, "sources": top.sources, "bus_width": top.bus_width}
+    )()

@@ -459,63 +459,34 @@ def write_bag(
         RfcError: An unknown suffix, a middleware the format does not carry, or a write error.
     """
     target = Path(path)
-    middleware = BAG_SUFFIXES.get(target.suffix)
-    if middleware is None:
-        raise RfcError(
-            f"cannot tell the bag format of '{target}'",
-            hint="end it in .bag (ROS 1), .mcap or .db3 (ROS 2)",
-        )
-    if middleware is not types.middleware:
-        raise RfcError(
-            f"'{target}' would be a {middleware.label} bag, but the messages are "
-            f"{types.middleware.label}",
-            hint="end it in "
-            + (".bag" if types.middleware is Middleware.ROS1 else ".mcap or .db3"),
-        )
-    if target.is_dir():
-        raise RfcError(f"'{target}' is a directory; name a bag file")
+    middleware = check_bag_path(target, types.middleware)
     with tempfile.TemporaryDirectory(prefix=f".{target.name}.", dir=target.parent) as scratch:
-        written = _write_rosbag1 if middleware is Middleware.ROS1 else _write_rosbag2
         try:
-            result = written(Path(scratch), target.suffix, types, topics, messages)
+            if middleware is Middleware.ROS1:
+                result = Path(scratch) / f"out{target.suffix}"
+                with Rosbag1Writer(result) as writer:
+                    _fill(writer, types, topics, messages)
+            else:
+                mcap = target.suffix == ".mcap"
+                storage = StoragePlugin.MCAP if mcap else StoragePlugin.SQLITE3
+                directory = Path(scratch) / "out"
+                with Rosbag2Writer(directory, version=9, storage_plugin=storage) as writer:
+                    _fill(writer, types, topics, messages)
+                (result,) = directory.glob(f"*{target.suffix}")
             result.replace(target)
         except (OSError, WriterError, Rosbag1WriterError) as exc:
             raise RfcError(f"cannot write bag '{target}': {exc}") from None
 
 
-def _write_rosbag1(
-    scratch: Path,
-    suffix: str,
+def _fill(
+    writer: Rosbag1Writer | Rosbag2Writer,
     types: MessageTypes,
     topics: Mapping[str, str],
     messages: Iterable[tuple[str, int, bytes]],
-) -> Path:
-    bag = scratch / f"out{suffix}"
-    with Rosbag1Writer(bag) as writer:
-        connections = {
-            topic: writer.add_connection(topic, msgtype, typestore=types._store)
-            for topic, msgtype in topics.items()
-        }
-        for topic, stamp, data in messages:
-            writer.write(connections[topic], stamp, data)
-    return bag
-
-
-def _write_rosbag2(
-    scratch: Path,
-    suffix: str,
-    types: MessageTypes,
-    topics: Mapping[str, str],
-    messages: Iterable[tuple[str, int, bytes]],
-) -> Path:
-    storage = StoragePlugin.MCAP if suffix == ".mcap" else StoragePlugin.SQLITE3
-    directory = scratch / "out"
-    with Rosbag2Writer(directory, version=9, storage_plugin=storage) as writer:
-        connections = {
-            topic: writer.add_connection(topic, msgtype, typestore=types._store)
-            for topic, msgtype in topics.items()
-        }
-        for topic, stamp, data in messages:
-            writer.write(connections[topic], stamp, data)
-    (storage_file,) = directory.glob(f"*{suffix}")
-    return storage_file
+) -> None:
+    connections = {
+        topic: writer.add_connection(topic, msgtype, typestore=types._store)
+        for topic, msgtype in topics.items()
+    }
+    for topic, stamp, data in messages:
+        writer.write(connections[topic], stamp, data)

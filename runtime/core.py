@@ -207,4 +207,15 @@ class Runtime:
             port_routes, results, accelerator.output_types, strict=True
         ):
             if result is not None:
-                self._deliver(routes, types.serialize(result, message_type), stamp, now, out)
+                self._deliver(
+                    routes, self._serialize(route.block, result, message_type), stamp, now, out
+                )
+
+    def _serialize(self, block: str, message: object, message_type: str) -> bytes:
+        try:
+            return self.plan.types.serialize(message, message_type)
+        except Exception as exc:  # rosbags refused what the user's function built
+            raise RfcError(
+                f"ROS-SW accelerator '{block}' returned a message rosbags cannot serialize "
+                f"as {message_type}: {type(exc).__name__}: {exc}"
+            ) from None

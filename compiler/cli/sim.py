@@ -9,9 +9,11 @@ where and why (`rfc.runtime.account`).
 from __future__ import annotations
 
 import json
+import shutil
 import sys
 import tempfile
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Generator
+from contextlib import closing
 from dataclasses import dataclass, replace
 from enum import StrEnum
 from pathlib import Path
@@ -139,7 +141,7 @@ class _Run:
         counts = bag_topics(self.bag, self.types, counts=True)
         return sum(counts[topic] for topic in self.topic_names)
 
-    def messages(self) -> Iterator[BagMessage]:
+    def messages(self) -> Generator[BagMessage, None, None]:
         from rfc.messages.rosbags_adapter import read_bag
 
         for message in read_bag(self.bag, self.types, sorted(self.topic_names)):
@@ -148,28 +150,45 @@ class _Run:
     def execute(self, progress: Callable[[int], None]) -> tuple[list[Published], Account]:
         from rfc.runtime.hardware import DEFAULT_TOP_PROVIDER, load_top_provider
         from rfc.runtime.replay import replay
+        from rfc.toolchain import CosimError
 
         runtime, design = self.runtime, self.runtime.plan.design
         if not runtime.plan.has_logic:
-            return replay(runtime, self.messages(), None, progress), runtime.account
+            with closing(self.messages()) as messages:
+                return replay(runtime, messages, None, progress), runtime.account
         provider = load_top_provider(self.top_provider or DEFAULT_TOP_PROVIDER)
-        with tempfile.TemporaryDirectory(prefix="rfc-sim-") as scratch:
-            top = provider(design, Path(scratch) / "hdl")
+        scratch = Path(tempfile.mkdtemp(prefix="rfc-sim-"))
+        try:
+            top = provider(design, scratch / "hdl")
             if self.backend is Backend.MYHDL:
-                return self._myhdl(top, progress), runtime.account
-            from rfc.runtime.hardware import simulate_with_ghdl
+                published = self._myhdl(top, progress)
+            else:
+                published, account = self._ghdl(top, scratch, progress)
+                runtime.account = account
+        except CosimError as exc:  # the logic or a ROS-SW function failed in the simulator
+            raise RfcError(f"the simulation of {design.project.name} failed: {exc}") from None
+        except BaseException:
+            shutil.rmtree(scratch, ignore_errors=True)
+            raise
+        shutil.rmtree(scratch, ignore_errors=True)  # kept above when it failed, for its log
+        return published, runtime.account
 
-            run = simulate_with_ghdl(
-                design,
-                self.bag.resolve(),
-                self.topic_names,
-                top,
-                Path(scratch),
-                queues=runtime.queues,
-                drain_cycles=self.drain_cycles,
-                seed=self.seed,
-                progress=progress,
-            )
+    def _ghdl(
+        self, top: SimulationTop, scratch: Path, progress: Callable[[int], None]
+    ) -> tuple[list[Published], Account]:
+        from rfc.runtime.hardware import simulate_with_ghdl
+
+        run = simulate_with_ghdl(
+            self.runtime.plan.design,
+            self.bag.resolve(),
+            self.topic_names,
+            top,
+            scratch,
+            queues=self.runtime.queues,
+            drain_cycles=self.drain_cycles,
+            seed=self.seed,
+            progress=progress,
+        )
         return run.published, run.account
 
     def _myhdl(self, top: SimulationTop, progress: Callable[[int], None]) -> list[Published]:
@@ -181,16 +200,17 @@ class _Run:
                 "the logic of this system is not a MyHDL design, so it cannot run in MyHDL",
                 hint="use --backend ghdl",
             )
-        return simulate_with_myhdl(
-            factory,
-            top.bus_width,
-            self.runtime,
-            self.messages(),
-            clock_mhz=self.runtime.plan.design.project.clock_mhz,
-            drain_cycles=self.drain_cycles,
-            seed=self.seed,
-            progress=progress,
-        )
+        with closing(self.messages()) as messages:
+            return simulate_with_myhdl(
+                factory,
+                top.bus_width,
+                self.runtime,
+                messages,
+                clock_mhz=self.runtime.plan.design.project.clock_mhz,
+                drain_cycles=self.drain_cycles,
+                seed=self.seed,
+                progress=progress,
+            )
 
 
 def _match_topics(plan: RuntimePlan, bag: Path, types: MessageTypes) -> dict[str, str]:

@@ -208,3 +208,17 @@ def test_without_the_whole_system_generation_hardware_cannot_be_simulated(tmp_pa
         assert "needs the whole-system hardware generation" in result.stderr
     else:
         pytest.skip("rfc.lower.hardware exists: the default top provider is tested with it")
+
+
+def test_a_software_function_failing_in_the_simulator_is_one_error(tmp_path, small_bag):
+    spec = system_copy(tmp_path, "pose_mixed.yaml")
+    with (tmp_path / "passthrough.py").open("a") as models:
+        models.write("\n\ndef clear_covariance(message):\n    raise ValueError('boom')\n")
+    out = tmp_path / "o.mcap"
+    result = run_rfc(
+        "sim", spec, "--bag", small_bag, "--out", out, "--backend", "myhdl", *ECHO, cwd=ROOT
+    )
+    assert result.returncode == 1
+    assert "ROS-SW accelerator 'Clear' raised ValueError: boom (call 1)" in result.stderr
+    assert "Traceback" not in result.stderr
+    assert not out.exists()

@@ -5,10 +5,17 @@ bus width; the manager gets the ids of the wire protocol (DESIGN.md §5); the pu
 the frame-length circuits and buffers (paper §4.2); the scheduler gets one input per publisher
 with its timing (paper §6).
 
-Numbering: subscribers and publishers are numbered separately, each from 0 in the order the
-spec declares them. A subscriber's id is the ``id`` of the PS→PL chunks it receives, a
-publisher's id the ``id`` of the PL→PS chunks it sends, and also its scheduler input index —
-so for the fixed-priority schedulers the publisher declared first has the highest priority.
+Placement: ROS-SW accelerators run on the processor, every other block in the logic. A
+subscriber is in the logic when it feeds a hardware block, a publisher when a hardware block
+feeds it. Where a connection crosses between a hardware and a ROS-SW accelerator, the logic
+needs a converter the spec does not declare: a *crossing* publisher (hardware → software) or
+subscriber (software → hardware), named after the hardware port it serves.
+
+Numbering: subscribers and publishers in the logic are numbered separately, each from 0: the
+declared ones in the order the spec declares them, then the crossing ones in connection order.
+A subscriber's id is the ``id`` of the PS→PL chunks it receives, a publisher's id the ``id`` of
+the PL→PS chunks it sends, and also its scheduler input index — so for the fixed-priority
+schedulers the publisher declared first has the highest priority.
 """
 
 from __future__ import annotations
@@ -16,6 +23,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from enum import StrEnum
 
+from rfc.ir.model import Connection
 from rfc.messages.layout import Layout
 
 #: Bytes of the chunk header (u16 id, u16 flags, u32 length) in front of every DMA transfer.
@@ -30,6 +38,22 @@ class DmaDirection(StrEnum):
 
     PS_TO_PL = "ps_to_pl"
     PL_TO_PS = "pl_to_ps"
+
+
+@dataclass(frozen=True)
+class Crossing:
+    """Where a converter the spec does not declare joins the logic to the processor.
+
+    Attributes:
+        hardware: ``Block.port`` of the hardware accelerator port the converter serves (an
+            output for a crossing publisher, an input for a crossing subscriber).
+        software: ``Block.port`` of the ROS-SW ports on the processor side: the inputs a
+            crossing publisher's messages go to, or the one output feeding a crossing
+            subscriber.
+    """
+
+    hardware: str
+    software: tuple[str, ...]
 
 
 @dataclass(frozen=True)
@@ -50,6 +74,8 @@ class Converter:
             feed the frame-length circuit (paper Algorithm 1); empty when none is needed.
         period: Clock cycles between messages, when the spec gives it.
         deadline: Relative deadline in clock cycles (the period when only that is given).
+        crossing: For a converter derived at a hardware/software crossing: where it sits
+            (its `block` is then a derived name, not a block of the design; `topic` is empty).
     """
 
     id: int
@@ -63,6 +89,7 @@ class Converter:
     length_fields: tuple[str, ...] = ()
     period: int | None = None
     deadline: int | None = None
+    crossing: Crossing | None = None
 
     @property
     def needs_frame_length(self) -> bool:
@@ -126,10 +153,26 @@ class Buffer:
 
 @dataclass(frozen=True)
 class Infrastructure:
-    """Everything derived from the spec: converters, DMA, scheduler and buffers."""
+    """Everything derived from the spec: converters, DMA, scheduler and buffers.
+
+    Attributes:
+        subscribers: The subscriber converters in the logic, by id.
+        publishers: The publisher converters in the logic, by id.
+        dma: The two DMA channels.
+        scheduler: The PL→PS scheduler.
+        buffers: Publisher fields held until their lengths are known.
+        hardware_connections: Every connection inside the logic: the design's connections
+            between hardware blocks, plus, at each crossing, the connection from the hardware
+            output to its crossing publisher (port ``in0``) or from a crossing subscriber (port
+            ``out0``) to the hardware input. Equal to the design's connections when no
+            accelerator runs in software.
+        software: Names of the blocks that run on the processor (ROS-SW accelerators).
+    """
 
     subscribers: tuple[Converter, ...]
     publishers: tuple[Converter, ...]
     dma: tuple[DmaChannel, ...]
     scheduler: Scheduler
     buffers: tuple[Buffer, ...]
+    hardware_connections: tuple[Connection, ...] = ()
+    software: tuple[str, ...] = ()

@@ -131,7 +131,7 @@ class _Writer:
         }
 
     def infrastructure(self, infrastructure: Infrastructure) -> dict[str, Any]:
-        return {
+        document = {
             "subscribers": [self.converter(c) for c in infrastructure.subscribers],
             "publishers": [self.converter(c) for c in infrastructure.publishers],
             "dma": [
@@ -162,9 +162,12 @@ class _Writer:
                 for b in infrastructure.buffers
             ],
         }
+        if infrastructure.software:
+            document["software"] = list(infrastructure.software)
+        return document
 
     def converter(self, converter: Converter) -> dict[str, Any]:
-        return {
+        entry = {
             "id": converter.id,
             "block": converter.block,
             "topic": converter.topic,
@@ -178,6 +181,11 @@ class _Writer:
             "deadline": converter.deadline,
             "fields": list(selected_paths(converter.layout)),
         }
+        if converter.crossing is not None:
+            entry["crossing"] = Flow(
+                hardware=converter.crossing.hardware, software=list(converter.crossing.software)
+            )
+        return entry
 
 
 def layout_rows(layout: Layout) -> list[Flow]:

@@ -148,15 +148,22 @@ def _verify_derived(design: Design) -> None:
     infrastructure = design.infrastructure
     _require(infrastructure is not None, "a derived design has no infrastructure")
     assert infrastructure is not None
+    software = set(infrastructure.software)
     for kind, converters in (
         (BlockKind.SUBSCRIBER, infrastructure.subscribers),
         (BlockKind.PUBLISHER, infrastructure.publishers),
     ):
-        blocks = design.blocks_of(kind)
+        declared = [c.block for c in converters if c.crossing is None]
         _require(
-            [c.id for c in converters] == list(range(len(blocks)))
-            and [c.block for c in converters] == [b.name for b in blocks],
-            f"{kind.value} ids are not 0..n-1 in declaration order",
+            [c.id for c in converters] == list(range(len(converters)))
+            and [c.block for c in converters[: len(declared)]] == declared
+            and all(design.block(name).kind is kind for name in declared)
+            and declared == sorted(declared, key=[b.name for b in design.blocks].index),
+            f"{kind.value} ids are not 0..n-1, declared converters first in declaration order",
+        )
+        _require(
+            not any(name in software for name in declared),
+            f"a {kind.value} in the logic is also on the processor",
         )
     inputs = infrastructure.scheduler.inputs
     _require(

@@ -1,9 +1,10 @@
 """derive-infrastructure: the parts of the system the spec leaves implicit (paper §3).
 
-From the checked, flattened graph it derives the converters with their wire-protocol ids and
-frame sizes, the two DMA channels, which publishers need a frame-length circuit and which
-fields feed it, the buffers needed while lengths are unknown, and the scheduler's inputs with
-their timing. See `rfc.ir.infrastructure` for the contract.
+From the checked, flattened graph it derives which blocks run in the logic and which on the
+processor (`rfc.passes.placement`), the converters with their wire-protocol ids and frame sizes
+(crossing converters included), the two DMA channels, which publishers need a frame-length
+circuit and which fields feed it, the buffers needed while lengths are unknown, and the
+scheduler's inputs with their timing. See `rfc.ir.infrastructure` for the contract.
 """
 
 from __future__ import annotations
@@ -27,6 +28,7 @@ from rfc.ir.infrastructure import (
 from rfc.ir.model import Block, BlockKind, Design, Stage
 from rfc.messages.layout import FieldKind, Layout, LayoutField
 from rfc.passes.frame_size import default_frame_bytes, frame_bound
+from rfc.passes.placement import CrossingConverter, place
 
 
 @dataclass(frozen=True)
@@ -38,9 +40,22 @@ class DeriveInfrastructure:
     def apply(self, design: Design) -> Design:
         """Return the design at stage DERIVED, its `infrastructure` filled in."""
         width = design.project.bus_width
+        placement = place(design)
         subscribers, publishers = (
-            tuple(_converter(i, block, width) for i, block in enumerate(design.blocks_of(kind)))
-            for kind in (BlockKind.SUBSCRIBER, BlockKind.PUBLISHER)
+            tuple(
+                [
+                    _converter(i, block, _converter_layout(block), width)
+                    for i, block in enumerate(declared)
+                ]
+                + [
+                    _crossing_converter(len(declared) + i, crossing, width)
+                    for i, crossing in enumerate(crossings)
+                ]
+            )
+            for declared, crossings in (
+                (placement.subscribers, placement.crossing_subscribers),
+                (placement.publishers, placement.crossing_publishers),
+            )
         )
         buffers = tuple(
             Buffer(converter.block, field.path, converter.max_frame_bytes)
@@ -61,9 +76,11 @@ class DeriveInfrastructure:
             ),
             scheduler=Scheduler(
                 design.project.scheduler,
-                tuple(_scheduler_input(c, design.block(c.block)) for c in publishers),
+                tuple(_scheduler_input(c, _block_of(design, c)) for c in publishers),
             ),
             buffers=buffers,
+            hardware_connections=placement.hardware_connections,
+            software=placement.software,
         )
         return replace(design, infrastructure=infrastructure, stage=Stage.DERIVED)
 
@@ -99,9 +116,20 @@ def _timing(block: Block) -> tuple[int | None, int | None]:
     return block.period, deadline
 
 
-def _converter(index: int, block: Block, width: int) -> Converter:
+def _block_of(design: Design, converter: Converter) -> Block | None:
+    return None if converter.crossing is not None else design.block(converter.block)
+
+
+def _crossing_converter(index: int, crossing: CrossingConverter, width: int) -> Converter:
+    """A converter at a crossing: named after its hardware port, with no topic or timing."""
+    assert crossing.port.layout is not None
+    block = Block(crossing.name, crossing.kind, crossing.connections[0].location)
+    converter = _converter(index, block, crossing.port.layout, width)
+    return replace(converter, crossing=crossing.crossing)
+
+
+def _converter(index: int, block: Block, layout: Layout, width: int) -> Converter:
     """A subscriber receives whole messages; a publisher sends its selection, rest defaults."""
-    layout = _converter_layout(block)
     length_fields: tuple[str, ...] = ()
     exact = layout.fixed_size
     if block.kind is BlockKind.PUBLISHER:
@@ -132,12 +160,17 @@ def _length_known_late(field: LayoutField) -> bool:
     return field.element is not None and any(f.is_dynamic for f in field.element.fields)
 
 
-def _scheduler_input(converter: Converter, block: Block) -> SchedulerInput:
+def _scheduler_input(converter: Converter, block: Block | None) -> SchedulerInput:
     exact = converter.frame_bytes is not None
     frame = converter.frame_bytes if exact else converter.max_frame_bytes
     assert frame is not None
     beats = math.ceil((CHUNK_HEADER_BYTES + frame) / (converter.bus_width // 8))
-    if exact and converter.deadline is not None and beats > converter.deadline:
+    if (
+        block is not None
+        and exact
+        and converter.deadline is not None
+        and beats > converter.deadline
+    ):
         attribute = "deadline" if block.deadline is not None else "period"
         raise RfcError(
             f"{attribute} of publisher '{block.name}' ({converter.deadline} cycles) is shorter "

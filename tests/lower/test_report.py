@@ -30,7 +30,7 @@ def test_lowering_produces_the_model_only_when_asked():
 
 def test_report_lists_buffers_when_a_publisher_needs_them(tmp_path):
     design = compile_yaml(tmp_path, pass_through("tf2_msgs/TFMessage"))
-    (report,) = lower(design, BuildOptions(), "project: {}\n")
+    report = lower(design, BuildOptions(), "project: {}\n")[-1]
     assert "## Buffers" in report.text
     assert "| `Pub` | transforms |" in report.text
     assert "| publisher | 0 | `Pub` | `/Pub` | tf2_msgs/msg/TFMessage |" in report.text

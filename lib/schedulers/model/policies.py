@@ -1,0 +1,195 @@
+"""Compute Condition and Set Grant of the six algorithms, vectorized (one class per family).
+
+Each class mirrors the hardware module of the same family in `rfc.lib.schedulers`: the same
+registers, reset values, widths and update rules, on arrays with a batch dimension R.
+Counters of the timed algorithms are biased by H = 2^(bits-1) and saturate at 0, as in hardware.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from rfc.lib.schedulers.model.selection import (
+    first_candidate,
+    holder_first,
+    least_key,
+    tree_least_modular,
+)
+from rfc.lib.schedulers.model.statechart import BoolArray, Cycle, IntArray
+
+
+class FixedPriority:
+    """NPFP and PFP: no table; the lowest requesting index wins."""
+
+    tracks_arrivals = False
+
+    def __init__(self, preemptive: bool) -> None:
+        self.preemptive = preemptive
+
+    def reset(self) -> None:
+        """Nothing to reset: priorities are the indices."""
+
+    def compute(self, cycle: Cycle) -> BoolArray | None:
+        """Fixed priorities need no computation."""
+        return None
+
+    def select(self, cycle: Cycle) -> IntArray:
+        """The lowest requesting index."""
+        return first_candidate(cycle.candidates)
+
+    def commit(self, cycle: Cycle, selected: BoolArray, best: IntArray) -> None:
+        """Nothing to update."""
+
+
+class LeastRecentlyUsed:
+    """LRU: a rank per input (0 = top); the input granted moves to the bottom (rank N-1)."""
+
+    preemptive = False
+    tracks_arrivals = False
+
+    def __init__(self, n: int, batch: int) -> None:
+        self._n, self._batch = n, batch
+        self.reset()
+
+    def reset(self) -> None:
+        """Ranks start as the indices: input 0 on top."""
+        self.rank = np.tile(np.arange(self._n, dtype=np.int64), (self._batch, 1))
+
+    def compute(self, cycle: Cycle) -> BoolArray | None:
+        """Ranks change only when a grant is given (see `commit`)."""
+        return None
+
+    def select(self, cycle: Cycle) -> IntArray:
+        """The requester highest in the list."""
+        return least_key(cycle.candidates, self.rank)
+
+    def commit(self, cycle: Cycle, selected: BoolArray, best: IntArray) -> None:
+        """The newly granted input goes to the bottom; those below it move up one place."""
+        rows = np.nonzero(selected & (best >= 0))[0]
+        if rows.size == 0:
+            return
+        chosen = self.rank[rows, best[rows]]
+        self.rank[rows] -= self.rank[rows] > chosen[:, None]
+        self.rank[rows, best[rows]] = self._n - 1
+
+
+class LatencyOptimizedEdf:
+    """LOEDF: a down-counter per input holds the cycles left to its deadline.
+
+    On arrival the counter loads D_i - 1 (the value it has one cycle later); every cycle a
+    message is pending it counts down, saturating at -H. Set Grant compares the counters' next
+    values, so a new message competes in the cycle it arrives; the holder wins ties.
+    """
+
+    preemptive = True
+    tracks_arrivals = True
+
+    def __init__(self, deadline: IntArray, bits: int) -> None:
+        self._load = deadline - 1 + (1 << (bits - 1))
+        self.reset()
+
+    def reset(self) -> None:
+        """Counters reset to 0 (the most urgent value); they load on each arrival."""
+        self.counter = np.zeros_like(self._load)
+        self._next = self.counter
+
+    def compute(self, cycle: Cycle) -> BoolArray | None:
+        """Load arrivals, count down pending messages."""
+        assert cycle.pending is not None
+        assert cycle.arrival is not None
+        counting = cycle.pending & (self.counter > 0)
+        self._next = np.where(cycle.arrival, self._load, self.counter - counting)
+        return None
+
+    def select(self, cycle: Cycle) -> IntArray:
+        """Earliest deadline among candidates; the holder keeps the grant on a tie."""
+        return least_key(cycle.candidates, holder_first(self._next, cycle.owner))
+
+    def commit(self, cycle: Cycle, selected: BoolArray, best: IntArray) -> None:
+        """Register the counters' next values."""
+        self.counter = self._next
+
+
+class LeastSlackTime:
+    """LST: a slack counter per input, s = d - t - c (deadline, now, beats still to send).
+
+    On arrival it loads D_i - T_i - 1; each cycle a pending message does not move a beat its
+    slack drops by one (saturating at -H), while the input moving a beat keeps its slack.
+    """
+
+    preemptive = True
+    tracks_arrivals = True
+
+    def __init__(self, transfer: IntArray, deadline: IntArray, bits: int) -> None:
+        self._load = deadline - transfer - 1 + (1 << (bits - 1))
+        self.reset()
+
+    def reset(self) -> None:
+        """Slack counters reset to 0 (the most urgent value)."""
+        self.slack = np.zeros_like(self._load)
+        self._next = self.slack
+
+    def compute(self, cycle: Cycle) -> BoolArray | None:
+        """Load arrivals; waiting messages lose one cycle of slack."""
+        assert cycle.pending is not None
+        assert cycle.arrival is not None
+        waiting = cycle.pending & (self.slack > 0)
+        moving = np.nonzero(cycle.transfer >= 0)[0]
+        waiting[moving, cycle.transfer[moving]] = False
+        self._next = np.where(cycle.arrival, self._load, self.slack - waiting)
+        return None
+
+    def select(self, cycle: Cycle) -> IntArray:
+        """Least slack among candidates; the holder keeps the grant on a tie."""
+        return least_key(cycle.candidates, holder_first(self._next, cycle.owner))
+
+    def commit(self, cycle: Cycle, selected: BoolArray, best: IntArray) -> None:
+        """Register the slack counters' next values."""
+        self.slack = self._next
+
+
+class ResourceOptimizedEdf:
+    """ROEDF: absolute deadlines on a wrapping timer, registered one arrival per cycle.
+
+    A free-running timer counts cycles. While requests wait to be registered (lowest index
+    first, one per cycle, through one shared adder: deadline = timer + D_i) the scheduler stays
+    in COMPUTE and withholds the grant. Leaving COMPUTE, Set Grant picks the earliest registered
+    deadline (wrap-around comparison, holder wins ties). No per-input arithmetic: that is the
+    area it saves against LOEDF, paid for in grant latency.
+    """
+
+    preemptive = False
+    tracks_arrivals = False
+
+    def __init__(self, deadline: IntArray, bits: int) -> None:
+        self._deadline = deadline
+        self._bits = bits
+        self._mask = (1 << bits) - 1
+        self.reset()
+
+    def reset(self) -> None:
+        """Timer at 0, nothing registered."""
+        self.absolute = np.zeros_like(self._deadline)
+        self.registered = np.zeros(self._deadline.shape, dtype=bool)
+        self.timer = np.zeros(self._deadline.shape[0], dtype=np.int64)
+        self._loading = first_candidate(self.registered)
+
+    def compute(self, cycle: Cycle) -> BoolArray | None:
+        """Pick the next request to register; pause while there is one."""
+        self._loading = first_candidate(cycle.request & ~self.registered)
+        return self._loading >= 0
+
+    def select(self, cycle: Cycle) -> IntArray:
+        """Earliest registered deadline among candidates; the holder wins ties."""
+        keys = holder_first(self.absolute, cycle.owner)
+        return tree_least_modular(cycle.candidates, keys, self._bits + 1)
+
+    def commit(self, cycle: Cycle, selected: BoolArray, best: IntArray) -> None:
+        """Register one deadline, forget completed messages, advance the timer."""
+        rows = np.nonzero(self._loading >= 0)[0]
+        index = self._loading[rows]
+        self.absolute[rows, index] = (self.timer[rows] + self._deadline[rows, index]) & self._mask
+        self.registered[rows, index] = True
+        done = np.nonzero(cycle.complete)[0]
+        self.registered[done, cycle.transfer[done]] = False
+        self.timer = (self.timer + 1) & self._mask

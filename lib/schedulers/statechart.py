@@ -159,6 +159,9 @@ def statechart(
     def detect_tlast():
         complete.next = grant & last
         done.next = (grant & last) != 0
+
+    @always_comb
+    def exclude_completing():
         candidates.next = request & ~(grant & last)
 
     if policy.pauses:
@@ -203,6 +206,7 @@ def statechart(
         offer_channel if policy.pauses else offer_always,
         grant_channel,
         detect_tlast,
+        exclude_completing,
         decide,
         set_grant,
         priority_tree(

@@ -16,7 +16,7 @@ import numpy as np
 
 from rfc.lib.schedulers.model import model_of
 from rfc.lib.schedulers.model.traffic import Publishers
-from rfc.lib.schedulers.spec import AnySchedulerSpec
+from rfc.lib.schedulers.spec import Algorithm, AnySchedulerSpec, CompositionSpec, SchedulerSpec
 
 
 @dataclass(frozen=True)
@@ -90,3 +90,47 @@ def first_difference(expected: np.ndarray, actual: np.ndarray, trace: Trace) -> 
         f"(request {bits_to_int(trace.request[k]):#x}, last {bits_to_int(trace.last[k]):#x}, "
         f"ready {int(trace.ready[k])})"
     )
+
+
+#: What the equivalence tests co-simulate: the six algorithms and one composition.
+COMPOSITION = "LRU(LOEDF,LST)"
+DESIGNS = (*(a.value for a in Algorithm), COMPOSITION)
+#: Input counts of the equivalence tests (issue 5).
+COSIM_INPUTS = (2, 3, 8, 33)
+#: At this input count the timed algorithms get the narrowest legal counters, so that the
+#: traces drive them into saturation (LOEDF, LST) and wrap-around (ROEDF).
+NARROW_AT = 8
+
+
+def cosim_spec(design: str, n: int) -> AnySchedulerSpec:
+    """The spec co-simulated for `design` with `n` inputs: random T in 1..10, D = T + 1..30."""
+    rng = np.random.default_rng(n)
+    transfer = rng.integers(1, 11, size=n).tolist()
+    deadline = [t + int(d) for t, d in zip(transfer, rng.integers(1, 31, size=n), strict=True)]
+    bits = None
+    if n == NARROW_AT:
+        bits = max(t + d for t, d in zip(transfer, deadline, strict=True)).bit_length() + 1
+    if design == COMPOSITION:
+        half = n // 2
+        return CompositionSpec.create(
+            "LRU",
+            [
+                SchedulerSpec.create("LOEDF", half, transfer[:half], deadline[:half], bits),
+                SchedulerSpec.create("LST", n - half, transfer[half:], deadline[half:], bits),
+            ],
+        )
+    return SchedulerSpec.create(design, n, transfer, deadline, bits)
+
+
+def checked_rule(design: str, n: int) -> Algorithm | None:
+    """The algorithm whose rule the properties hold a trace to (None: generic checks only).
+
+    Narrow counters saturate or wrap by design, which the paper's rules do not model, and a
+    composition follows no single algorithm's rule.
+    """
+    if design == COMPOSITION:
+        return None
+    algorithm = Algorithm(design)
+    if algorithm.timed and n == NARROW_AT:
+        return None
+    return algorithm

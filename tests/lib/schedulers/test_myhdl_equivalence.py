@@ -1,0 +1,52 @@
+"""Model ≡ MyHDL simulation on every cycle, on random traffic, N ∈ {2, 3, 8, 33}.
+
+Each design replays 2,500 cycles per input count: 10,000 cycles per algorithm (and for the
+composition) in MyHDL's simulator. The GHDL co-simulation of the converted VHDL is in
+tests/hdl/schedulers.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from rfc.lib.schedulers.spec import SchedulerSpec
+from tests.support.myhdl_sim import simulate_myhdl
+from tests.support.scheduler_properties import PropertyMonitor
+from tests.support.scheduler_traces import (
+    COSIM_INPUTS,
+    DESIGNS,
+    checked_rule,
+    cosim_spec,
+    first_difference,
+    record_trace,
+)
+
+CYCLES_PER_N = 2_500
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("design", DESIGNS)
+def test_myhdl_grants_equal_the_model_on_every_cycle(design):
+    for n in COSIM_INPUTS:
+        spec = cosim_spec(design, n)
+        trace = record_trace(spec, CYCLES_PER_N, seed=100 + n)
+        grants = simulate_myhdl(spec, trace)
+        assert first_difference(trace.grant, grants, trace) is None, f"{spec.name}"
+        monitor = PropertyMonitor(checked_rule(design, n), [spec.transfer], [spec.deadline])
+        for k in range(trace.cycles):
+            monitor.observe(
+                trace.request[k : k + 1],
+                trace.last[k : k + 1],
+                grants[k : k + 1],
+                trace.ready[k : k + 1],
+            )
+        assert monitor.counts["completions"] > 50
+
+
+def test_a_different_algorithm_is_caught_on_the_cycle_it_differs():
+    npfp = SchedulerSpec.create("NPFP", 3, [4, 4, 4], [9, 9, 9])
+    pfp = SchedulerSpec.create("PFP", 3, [4, 4, 4], [9, 9, 9])
+    trace = record_trace(pfp, 400, seed=5)
+    difference = first_difference(trace.grant, simulate_myhdl(npfp, trace), trace)
+    assert difference is not None
+    assert difference.startswith("cycle ")

@@ -1,9 +1,11 @@
 """Generate a scheduler's VHDL/Verilog, estimate its resources (cached) and measure its latency.
 
-Synthesis is deterministic: the same VHDL through the same GHDL and Yosys gives the same cells.
-Results are cached by a hash of the generated VHDL and the tools' versions under
-``$RFC_CACHE_DIR/synthesis`` (default ``~/.cache/rfc``), so the DSE and the sweep can ask for
-LUT/FF figures as often as they like.
+Synthesis is deterministic: the same spec through the same generator, GHDL and Yosys gives the
+same cells. Results are cached under ``$RFC_CACHE_DIR/synthesis`` (default ``~/.cache/rfc``)
+by a hash of the spec, the generator's source (this package and rfc.toolchain, MyHDL's
+version) and the tools' versions, so the DSE and the sweep can ask for LUT/FF figures as often
+as they like. (The VHDL text itself is no key: MyHDL orders sensitivity lists by string hash
+and numbers instances per process.)
 """
 
 from __future__ import annotations
@@ -82,6 +84,20 @@ def _tool_versions() -> str:
     return "\n".join(versions)
 
 
+def _generator_sources() -> str:
+    """The code that decides what VHDL a spec becomes: the hardware modules and the toolchain."""
+    import myhdl
+
+    from rfc import toolchain
+    from rfc.lib import schedulers
+
+    folders = (Path(schedulers.__file__).parent, Path(toolchain.__file__).parent)
+    texts = [myhdl.__version__]
+    for folder in folders:
+        texts += [path.read_text() for path in sorted(folder.glob("*.py"))]
+    return "\n".join(texts)
+
+
 def synthesize(spec: AnySchedulerSpec, *, use_cache: bool = True) -> SynthesisReport:
     """LUT/FF (and other cells) of `spec` from GHDL synthesis and Yosys `synth_xilinx`.
 
@@ -89,16 +105,15 @@ def synthesize(spec: AnySchedulerSpec, *, use_cache: bool = True) -> SynthesisRe
         GhdlError: The generated VHDL does not synthesize (a bug in rfc).
     """
     name = entity_name(spec)
+    digest = hashlib.sha256()
+    for part in (_FLOW, _tool_versions(), repr(spec), _generator_sources()):
+        digest.update(part.encode())
+    entry = cache_directory() / f"{digest.hexdigest()}.json"
+    if use_cache and entry.is_file():
+        return SynthesisReport(Resources(**json.loads(entry.read_text())), cached=True)
     with tempfile.TemporaryDirectory(prefix="rfc-sched-") as scratch:
         files = generate_hdl(spec, Path(scratch), name)
-        vhdl = [f for f in files if f.suffix == ".vhd"]
-        digest = hashlib.sha256()
-        for part in (_FLOW, _tool_versions(), name, *(f.read_text() for f in vhdl)):
-            digest.update(part.encode())
-        entry = cache_directory() / f"{digest.hexdigest()}.json"
-        if use_cache and entry.is_file():
-            return SynthesisReport(Resources(**json.loads(entry.read_text())), cached=True)
-        resources = estimate_resources(vhdl, name)
+        resources = estimate_resources([f for f in files if f.suffix == ".vhd"], name)
     if use_cache:
         entry.parent.mkdir(parents=True, exist_ok=True)
         partial = entry.with_suffix(f".{os.getpid()}.tmp")

@@ -8,6 +8,7 @@ deadline/slack counters. A `CompositionSpec` is a scheduler whose inputs are sch
 
 from __future__ import annotations
 
+import re
 from collections.abc import Sequence
 from dataclasses import dataclass
 from enum import StrEnum
@@ -250,3 +251,75 @@ class CompositionSpec:
 
 
 AnySchedulerSpec = SchedulerSpec | CompositionSpec
+
+
+def parse_scheduler(
+    text: str,
+    n: int,
+    transfer: int | Sequence[int] = DEFAULT_TRANSFER,
+    deadline: int | Sequence[int] | None = None,
+    counter_bits: int | None = None,
+) -> AnySchedulerSpec:
+    """A spec from a name: an algorithm (``LOEDF``) or a composition (``LRU(LOEDF,LST)``).
+
+    A composition's children share the `n` inputs in order, as evenly as possible, unless
+    sizes are given (``LRU(LOEDF:100,LST:28)``); children may be compositions themselves.
+
+    Raises:
+        RfcError: The text is not an algorithm or a well-formed composition of them.
+    """
+    check_inputs(n)
+    transfers = _per_input(transfer, n, "the transfer time")
+    deadlines = None if deadline is None else _per_input(deadline, n, "the deadline")
+    return _parse(text.replace(" ", ""), n, transfers, deadlines, counter_bits, text)
+
+
+def _parse(text, n, transfers, deadlines, bits, whole) -> AnySchedulerSpec:
+    if "(" not in text:
+        return SchedulerSpec.create(text, n, transfers, deadlines, bits)
+    head, _, rest = text.partition("(")
+    if not rest.endswith(")"):
+        raise RfcError(
+            f"cannot read the composition '{whole}': a '(' is not closed",
+            hint="write it like LRU(LOEDF,LST) or LRU(LOEDF:128,LST:128)",
+        )
+    parts = [_SIZED.fullmatch(part) for part in _split_children(rest[:-1], whole)]
+    names = [match.group(1) for match in parts]
+    sizes = [int(match.group(2)) if match.group(2) else None for match in parts]
+    unsized = [i for i, size in enumerate(sizes) if size is None]
+    left = n - sum(size for size in sizes if size is not None)
+    for rank, i in enumerate(unsized):
+        sizes[i] = left // len(unsized) + (1 if rank >= len(unsized) - left % len(unsized) else 0)
+    if min(sizes) < 1 or sum(sizes) != n:
+        raise RfcError(
+            f"the children of '{whole}' must share the {n} inputs, at least one each; "
+            f"the sizes given add up to {n - left}",
+            hint="give sizes that add up to N, or leave some out to share the rest",
+        )
+    children, start = [], 0
+    for name, size in zip(names, sizes, strict=True):
+        stop = start + size
+        kid_deadlines = None if deadlines is None else deadlines[start:stop]
+        children.append(_parse(name, size, transfers[start:stop], kid_deadlines, bits, whole))
+        start = stop
+    return CompositionSpec.create(head, children, bits)
+
+
+_SIZED = re.compile(r"(.+?)(?::(\d+))?")
+
+
+def _split_children(text: str, whole: str) -> list[str]:
+    parts, depth, current = [], 0, ""
+    for char in text:
+        depth += {"(": 1, ")": -1}.get(char, 0)
+        if char == "," and depth == 0:
+            parts.append(current)
+            current = ""
+        else:
+            current += char
+    parts.append(current)
+    if depth != 0 or any(not part for part in parts):
+        raise RfcError(
+            f"cannot read the composition '{whole}'", hint="write it like LRU(LOEDF,LST)"
+        )
+    return parts

@@ -13,9 +13,15 @@ from rfc.lib.schedulers.model.selection import (
     first_candidate,
     holder_first,
     least_key,
+    least_key_holder_first,
     tree_least_modular,
 )
 from rfc.lib.schedulers.model.statechart import BoolArray, Cycle, IntArray
+
+
+def counter_type(bits: int) -> type[np.signedinteger]:
+    """The narrowest NumPy integer that holds a biased counter (and the difference of two)."""
+    return np.int32 if bits <= 30 else np.int64
 
 
 class FixedPriority:
@@ -33,9 +39,9 @@ class FixedPriority:
         """Fixed priorities need no computation."""
         return None
 
-    def select(self, cycle: Cycle) -> IntArray:
+    def select(self, cycle: Cycle, rows: IntArray | None) -> IntArray:
         """The lowest requesting index."""
-        return first_candidate(cycle.candidates)
+        return first_candidate(cycle.candidates if rows is None else cycle.candidates[rows])
 
     def commit(self, cycle: Cycle, selected: BoolArray, best: IntArray) -> None:
         """Nothing to update."""
@@ -53,15 +59,17 @@ class LeastRecentlyUsed:
 
     def reset(self) -> None:
         """Ranks start as the indices: input 0 on top."""
-        self.rank = np.tile(np.arange(self._n, dtype=np.int64), (self._batch, 1))
+        self.rank = np.tile(np.arange(self._n, dtype=np.int32), (self._batch, 1))
 
     def compute(self, cycle: Cycle) -> BoolArray | None:
         """Ranks change only when a grant is given (see `commit`)."""
         return None
 
-    def select(self, cycle: Cycle) -> IntArray:
+    def select(self, cycle: Cycle, rows: IntArray | None) -> IntArray:
         """The requester highest in the list."""
-        return least_key(cycle.candidates, self.rank)
+        if rows is None:
+            return least_key(cycle.candidates, self.rank)
+        return least_key(cycle.candidates[rows], self.rank[rows])
 
     def commit(self, cycle: Cycle, selected: BoolArray, best: IntArray) -> None:
         """The newly granted input goes to the bottom; those below it move up one place."""
@@ -85,7 +93,7 @@ class LatencyOptimizedEdf:
     tracks_arrivals = True
 
     def __init__(self, deadline: IntArray, bits: int) -> None:
-        self._load = deadline - 1 + (1 << (bits - 1))
+        self._load = (deadline - 1 + (1 << (bits - 1))).astype(counter_type(bits))
         self.reset()
 
     def reset(self) -> None:
@@ -97,13 +105,13 @@ class LatencyOptimizedEdf:
         """Load arrivals, count down pending messages."""
         assert cycle.pending is not None
         assert cycle.arrival is not None
-        counting = cycle.pending & (self.counter > 0)
-        self._next = np.where(cycle.arrival, self._load, self.counter - counting)
+        self._next = self.counter - (cycle.pending & (self.counter > 0))
+        np.copyto(self._next, self._load, where=cycle.arrival)
         return None
 
-    def select(self, cycle: Cycle) -> IntArray:
+    def select(self, cycle: Cycle, rows: IntArray | None) -> IntArray:
         """Earliest deadline among candidates; the holder keeps the grant on a tie."""
-        return least_key(cycle.candidates, holder_first(self._next, cycle.owner))
+        return least_key_holder_first(cycle.candidates, self._next, cycle.owner)
 
     def commit(self, cycle: Cycle, selected: BoolArray, best: IntArray) -> None:
         """Register the counters' next values."""
@@ -121,7 +129,7 @@ class LeastSlackTime:
     tracks_arrivals = True
 
     def __init__(self, transfer: IntArray, deadline: IntArray, bits: int) -> None:
-        self._load = deadline - transfer - 1 + (1 << (bits - 1))
+        self._load = (deadline - transfer - 1 + (1 << (bits - 1))).astype(counter_type(bits))
         self.reset()
 
     def reset(self) -> None:
@@ -136,12 +144,13 @@ class LeastSlackTime:
         waiting = cycle.pending & (self.slack > 0)
         moving = np.nonzero(cycle.transfer >= 0)[0]
         waiting[moving, cycle.transfer[moving]] = False
-        self._next = np.where(cycle.arrival, self._load, self.slack - waiting)
+        self._next = self.slack - waiting
+        np.copyto(self._next, self._load, where=cycle.arrival)
         return None
 
-    def select(self, cycle: Cycle) -> IntArray:
+    def select(self, cycle: Cycle, rows: IntArray | None) -> IntArray:
         """Least slack among candidates; the holder keeps the grant on a tie."""
-        return least_key(cycle.candidates, holder_first(self._next, cycle.owner))
+        return least_key_holder_first(cycle.candidates, self._next, cycle.owner)
 
     def commit(self, cycle: Cycle, selected: BoolArray, best: IntArray) -> None:
         """Register the slack counters' next values."""
@@ -179,10 +188,11 @@ class ResourceOptimizedEdf:
         self._loading = first_candidate(cycle.request & ~self.registered)
         return self._loading >= 0
 
-    def select(self, cycle: Cycle) -> IntArray:
+    def select(self, cycle: Cycle, rows: IntArray | None) -> IntArray:
         """Earliest registered deadline among candidates; the holder wins ties."""
-        keys = holder_first(self.absolute, cycle.owner)
-        return tree_least_modular(cycle.candidates, keys, self._bits + 1)
+        rows = np.arange(len(cycle.owner)) if rows is None else rows
+        keys = holder_first(self.absolute[rows], cycle.owner[rows])
+        return tree_least_modular(cycle.candidates[rows], keys, self._bits + 1)
 
     def commit(self, cycle: Cycle, selected: BoolArray, best: IntArray) -> None:
         """Register one deadline, forget completed messages, advance the timer."""

@@ -13,8 +13,6 @@ import numpy as np
 
 from rfc.lib.schedulers.model.statechart import BoolArray, IntArray
 
-_NO_KEY = np.iinfo(np.int64).max
-
 
 def first_candidate(candidates: BoolArray) -> IntArray:
     """int[R]: the lowest candidate index per replicate, or -1 (a priority encoder)."""
@@ -24,7 +22,7 @@ def first_candidate(candidates: BoolArray) -> IntArray:
 
 def least_key(candidates: BoolArray, keys: IntArray) -> IntArray:
     """int[R]: the candidate with the smallest key, the lowest index on ties, or -1."""
-    index = np.argmin(np.where(candidates, keys, _NO_KEY), axis=1)
+    index = np.argmin(np.where(candidates, keys, np.iinfo(keys.dtype).max), axis=1)
     return np.where(candidates[np.arange(len(index)), index], index, -1)
 
 
@@ -34,6 +32,17 @@ def holder_first(keys: IntArray, owner: IntArray) -> IntArray:
     held = owner >= 0
     extended[np.nonzero(held)[0], owner[held]] -= 1
     return extended
+
+
+def least_key_holder_first(candidates: BoolArray, keys: IntArray, owner: IntArray) -> IntArray:
+    """`least_key` on `holder_first` keys, without building them: the holder wins ties."""
+    best = least_key(candidates, keys)
+    rows = np.arange(len(best))
+    held = owner >= 0
+    holder = np.maximum(owner, 0)
+    keeps = held & (best >= 0) & candidates[rows, holder]
+    keeps &= keys[rows, holder] == keys[rows, np.maximum(best, 0)]
+    return np.where(keeps, owner, best)
 
 
 def tree_least_modular(candidates: BoolArray, keys: IntArray, bits: int) -> IntArray:

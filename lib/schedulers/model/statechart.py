@@ -63,8 +63,13 @@ class Policy(Protocol):
             algorithm never pauses.
         """
 
-    def select(self, cycle: Cycle) -> IntArray:
-        """Set Grant: the highest-priority candidate per replicate, or -1."""
+    def select(self, cycle: Cycle, rows: IntArray | None) -> IntArray:
+        """Set Grant: the highest-priority candidate of each replicate in `rows`, or -1.
+
+        Args:
+            cycle: This cycle's values.
+            rows: The replicates that re-decide (None: all of them).
+        """
 
     def commit(self, cycle: Cycle, selected: BoolArray, best: IntArray) -> None:
         """Clock edge of the priority table (`selected` marks rows that took `best`)."""
@@ -155,9 +160,16 @@ class StatechartModel:
             reselect = np.ones_like(reselect)
         if pause is not None:
             reselect &= ~pause
-        best = self.policy.select(cycle)
+        if self.policy.preemptive and pause is None:
+            best = self.policy.select(cycle, None)
+            owner = best
+        else:
+            deciding = np.nonzero(reselect)[0]
+            best = np.full(self.batch, -1, dtype=np.int64)
+            if deciding.size:
+                best[deciding] = self.policy.select(cycle, deciding)
+            owner = np.where(reselect, best, self._owner)
         self.policy.commit(cycle, reselect, best)
-        owner = np.where(reselect, best, self._owner)
         if pause is not None:
             owner = np.where(pause & complete, -1, owner)
             self._computing = pause

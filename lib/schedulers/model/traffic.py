@@ -34,7 +34,7 @@ class Publishers:
         rng: np.random.Generator | None = None,
         release: IntArray | None = None,
     ) -> None:
-        self.transfer = np.asarray(transfer, dtype=np.int64)
+        self.transfer = np.asarray(transfer, dtype=np.int32)
         self.batch, self.n = self.transfer.shape
         self._gap = None if gap is None else np.broadcast_to(gap, self.transfer.shape)
         self._max_gap = max_gap
@@ -43,15 +43,14 @@ class Publishers:
         if release is None:
             release = np.zeros_like(self.transfer) if gap is not None else self._random_gaps()
         self.remaining = np.zeros_like(self.transfer)
-        self.idle = np.asarray(release, dtype=np.int64).copy()
+        self.idle = np.asarray(release, dtype=np.int32).copy()
         self._start_due()
 
     def _random_gaps(self, shape: tuple[int, ...] | None = None) -> IntArray:
         return self._rng.integers(0, self._max_gap + 1, size=shape or self.transfer.shape)
 
     def _start_due(self) -> None:
-        due = (self.remaining == 0) & (self.idle == 0)
-        self.remaining = np.where(due, self.transfer, self.remaining)
+        np.copyto(self.remaining, self.transfer, where=(self.remaining == 0) & (self.idle == 0))
 
     @property
     def request(self) -> BoolArray:
@@ -76,8 +75,7 @@ class Publishers:
         moved = grant[rows]
         self.remaining[rows, moved] -= 1
         finished = rows[self.remaining[rows, moved] == 0]
-        waiting = self.remaining == 0
-        self.idle = np.where(waiting, np.maximum(self.idle - 1, 0), self.idle)
+        self.idle -= (self.remaining == 0) & (self.idle > 0)
         if finished.size:
             which = grant[finished]
             gaps = (

@@ -13,24 +13,14 @@ from typing import Any
 
 from myhdl import ConcatSignal, Signal, always_comb, block, intbv
 
-from rfc.lib.schedulers.spec import AnySchedulerSpec, CompositionSpec
+from rfc.lib.schedulers.spec import CompositionSpec
 
 #: A block function with the scheduler ports (clk, rst, request, last, ready, offer, grant).
 SchedulerBlock = Callable[..., Any]
 
 
 @block
-def composition(
-    clk: Any,
-    rst: Any,
-    request: Any,
-    last: Any,
-    ready: Any,
-    offer: Any,
-    grant: Any,
-    spec: CompositionSpec,
-    build: Callable[[AnySchedulerSpec], SchedulerBlock],
-) -> Any:
+def composition(clk, rst, request, last, ready, offer, grant, spec: CompositionSpec, build) -> Any:
     """The composite of `spec`; `build(spec)` gives the block of a child or of the parent.
 
     Ports are those of `statechart`: request and last (intbv[N] in), ready (in), offer and

@@ -14,7 +14,7 @@ from typing import Any
 
 from myhdl import Signal, always, always_comb, block, concat, intbv
 
-from rfc.lib.schedulers.statechart import Lines
+from rfc.lib.schedulers.statechart import Lines, PolicyHardware
 
 
 @block
@@ -72,3 +72,15 @@ def countdown_table(
                 counter[i].next = following[i]
 
     return count, prioritize, register
+
+
+def countdown_hardware(table: Any, bits: int) -> PolicyHardware:
+    """The statechart parts of a countdown algorithm (LOEDF, LST) whose table is `table`."""
+    return PolicyHardware(
+        preemptive=True,
+        tracks_arrivals=True,
+        key_bits=bits + 1,
+        modular=False,
+        pauses=False,
+        table=table,
+    )

@@ -19,7 +19,7 @@ from typing import Any
 
 from myhdl import Signal, always, always_comb, block, concat, intbv, modbv
 
-from rfc.lib.schedulers.countdown import countdown_table
+from rfc.lib.schedulers.countdown import countdown_hardware, countdown_table
 from rfc.lib.schedulers.priority_tree import index_bits, priority_tree
 from rfc.lib.schedulers.spec import SchedulerSpec
 from rfc.lib.schedulers.statechart import Lines, PolicyHardware
@@ -35,14 +35,7 @@ def loedf_table(clk: Any, rst: Any, lines: Lines, keys: list[Any], pause: Any, s
 
 def loedf_hardware(spec: SchedulerSpec) -> PolicyHardware:
     """The statechart parts of LOEDF."""
-    return PolicyHardware(
-        preemptive=True,
-        tracks_arrivals=True,
-        key_bits=spec.counter_bits + 1,
-        modular=False,
-        pauses=False,
-        table=loedf_table,
-    )
+    return countdown_hardware(loedf_table, spec.counter_bits)
 
 
 @block

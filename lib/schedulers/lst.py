@@ -13,7 +13,7 @@ from typing import Any
 
 from myhdl import block
 
-from rfc.lib.schedulers.countdown import countdown_table
+from rfc.lib.schedulers.countdown import countdown_hardware, countdown_table
 from rfc.lib.schedulers.spec import SchedulerSpec
 from rfc.lib.schedulers.statechart import Lines, PolicyHardware
 
@@ -28,11 +28,4 @@ def lst_table(clk: Any, rst: Any, lines: Lines, keys: list[Any], pause: Any, spe
 
 def lst_hardware(spec: SchedulerSpec) -> PolicyHardware:
     """The statechart parts of LST."""
-    return PolicyHardware(
-        preemptive=True,
-        tracks_arrivals=True,
-        key_bits=spec.counter_bits + 1,
-        modular=False,
-        pauses=False,
-        table=lst_table,
-    )
+    return countdown_hardware(lst_table, spec.counter_bits)

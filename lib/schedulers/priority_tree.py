@@ -58,10 +58,10 @@ def priority_tree(
         level: [Signal(intbv(0)[kb:]) for _ in range(width >> level)] for level in range(levels + 1)
     }
     node_index = {
-        level: [Signal(intbv(0)[max(level, 1) :]) for _ in range(width >> level)]
+        level: [Signal(intbv(0)[level + 1 :]) for _ in range(width >> level)]
         for level in range(levels + 1)
     }
-    parts = [tree_leaves(valid, keys, node_valid[0], node_key[0], n, key_bits)]
+    parts = [tree_leaves(valid, keys, node_valid[0], node_key[0], node_index[0], n, key_bits)]
     for level in range(1, levels + 1):
         parts.append(
             tree_level(
@@ -74,7 +74,6 @@ def priority_tree(
                 width >> level,
                 kb,
                 modular,
-                level == 1,
             )
         )
     parts.append(
@@ -87,22 +86,36 @@ def priority_tree(
 
 @block
 def tree_leaves(
-    valid: Any, keys: list[Any], leaf_valid: Any, leaf_key: list[Any], n: int, bits: int
+    valid: Any,
+    keys: list[Any],
+    leaf_valid: Any,
+    leaf_key: list[Any],
+    leaf_index: list[Any],
+    n: int,
+    bits: int,
 ):
-    """Leaf level; without keys every key is the constant 0 (synthesis folds the comparators)."""
+    """Leaf level; without keys every key is the constant 0 (synthesis folds the comparators).
+
+    Every leaf's index is a constant 0 bit below the bits the levels above add, so that all
+    levels share one form; the root drops it.
+    """
+    width = len(leaf_index)
     if bits == 0:
 
         @always_comb
         def pass_valid():
             leaf_valid.next = valid
-            for i in range(n):
+            for i in range(width):
                 leaf_key[i].next = 0
+                leaf_index[i].next = 0
 
         return pass_valid
 
     @always_comb
     def pass_leaves():
         leaf_valid.next = valid
+        for i in range(width):
+            leaf_index[i].next = 0
         for i in range(n):
             leaf_key[i].next = keys[i]
 
@@ -110,32 +123,13 @@ def tree_leaves(
 
 
 @block
-def tree_level(
-    valid_in, key_in, index_in, valid_out, key_out, index_out, count, bits, modular, first
-):
+def tree_level(valid_in, key_in, index_in, valid_out, key_out, index_out, count, bits, modular):
     """One level of nodes: the right operand wins on the sign of (right - left).
 
     Bit `bits` of the zero-extended difference is the borrow of an unsigned comparison, bit
     `bits - 1` the sign of the wrap-around difference.
     """
     sign = bits - 1 if modular else bits
-
-    if first:
-
-        @always_comb
-        def first_nodes():
-            diff = modbv(0)[bits + 1 :]
-            for j in range(count):
-                diff[:] = concat(False, key_in[2 * j + 1]) - concat(False, key_in[2 * j])
-                valid_out.next[j] = valid_in[2 * j] or valid_in[2 * j + 1]
-                if valid_in[2 * j + 1] and (not valid_in[2 * j] or diff[sign]):
-                    key_out[j].next = key_in[2 * j + 1]
-                    index_out[j].next = 1
-                else:
-                    key_out[j].next = key_in[2 * j]
-                    index_out[j].next = 0
-
-        return first_nodes
 
     @always_comb
     def nodes():
@@ -158,10 +152,11 @@ def tree_root(
     valid: Any, key: list[Any], index: list[Any], best: Any, best_valid: Any, best_key: Any
 ):
     """The root node's index, validity and key drive the tree's outputs."""
+    top = len(best) + 1
 
     @always_comb
     def drive():
-        best.next = index[0]
+        best.next = index[0][top:1]
         best_valid.next = valid[0]
         best_key.next = key[0]
 

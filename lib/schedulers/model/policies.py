@@ -81,19 +81,24 @@ class LeastRecentlyUsed:
         self.rank[rows, best[rows]] = self._n - 1
 
 
-class LatencyOptimizedEdf:
-    """LOEDF: a down-counter per input holds the cycles left to its deadline.
+class Countdown:
+    """Per-input counters that load on arrival and count down while pending (LOEDF, LST).
 
-    On arrival the counter loads D_i - 1 (the value it has one cycle later); every cycle a
-    message is pending it counts down, saturating at -H. Set Grant compares the counters' next
-    values, so a new message competes in the cycle it arrives; the holder wins ties.
+    Mirrors `rfc.lib.schedulers.countdown`: biased by H, saturating at 0; Set Grant compares the
+    counters' next values, so a new message competes in the cycle it arrives; the holder wins
+    ties.
+
+    Args:
+        load: int[R, N] biased value each counter takes on arrival.
+        keep_while_moving: The counter of the input whose beat moves does not count (LST).
     """
 
     preemptive = True
     tracks_arrivals = True
 
-    def __init__(self, deadline: IntArray, bits: int) -> None:
-        self._load = (deadline - 1 + (1 << (bits - 1))).astype(counter_type(bits))
+    def __init__(self, load: IntArray, keep_while_moving: bool) -> None:
+        self._load = load
+        self._keep_while_moving = keep_while_moving
         self.reset()
 
     def reset(self) -> None:
@@ -102,15 +107,19 @@ class LatencyOptimizedEdf:
         self._next = self.counter
 
     def compute(self, cycle: Cycle) -> BoolArray | None:
-        """Load arrivals, count down pending messages."""
+        """Load arrivals; pending messages count down (LST: unless their beat moves)."""
         assert cycle.pending is not None
         assert cycle.arrival is not None
-        self._next = self.counter - (cycle.pending & (self.counter > 0))
+        counting = cycle.pending & (self.counter > 0)
+        if self._keep_while_moving:
+            moving = np.nonzero(cycle.transfer >= 0)[0]
+            counting[moving, cycle.transfer[moving]] = False
+        self._next = self.counter - counting
         np.copyto(self._next, self._load, where=cycle.arrival)
         return None
 
     def select(self, cycle: Cycle, rows: IntArray | None) -> IntArray:
-        """Earliest deadline among candidates; the holder keeps the grant on a tie."""
+        """The smallest next value among candidates; the holder keeps the grant on a tie."""
         return least_key_holder_first(cycle.candidates, self._next, cycle.owner)
 
     def commit(self, cycle: Cycle, selected: BoolArray, best: IntArray) -> None:
@@ -118,43 +127,28 @@ class LatencyOptimizedEdf:
         self.counter = self._next
 
 
-class LeastSlackTime:
+class LatencyOptimizedEdf(Countdown):
+    """LOEDF: a down-counter per input holds the cycles left to its deadline.
+
+    On arrival the counter loads D_i - 1 (the value it has one cycle later); every cycle a
+    message is pending it counts down, saturating at -H.
+    """
+
+    def __init__(self, deadline: IntArray, bits: int) -> None:
+        load = deadline - 1 + (1 << (bits - 1))
+        super().__init__(load.astype(counter_type(bits)), keep_while_moving=False)
+
+
+class LeastSlackTime(Countdown):
     """LST: a slack counter per input, s = d - t - c (deadline, now, beats still to send).
 
     On arrival it loads D_i - T_i - 1; each cycle a pending message does not move a beat its
     slack drops by one (saturating at -H), while the input moving a beat keeps its slack.
     """
 
-    preemptive = True
-    tracks_arrivals = True
-
     def __init__(self, transfer: IntArray, deadline: IntArray, bits: int) -> None:
-        self._load = (deadline - transfer - 1 + (1 << (bits - 1))).astype(counter_type(bits))
-        self.reset()
-
-    def reset(self) -> None:
-        """Slack counters reset to 0 (the most urgent value)."""
-        self.slack = np.zeros_like(self._load)
-        self._next = self.slack
-
-    def compute(self, cycle: Cycle) -> BoolArray | None:
-        """Load arrivals; waiting messages lose one cycle of slack."""
-        assert cycle.pending is not None
-        assert cycle.arrival is not None
-        waiting = cycle.pending & (self.slack > 0)
-        moving = np.nonzero(cycle.transfer >= 0)[0]
-        waiting[moving, cycle.transfer[moving]] = False
-        self._next = self.slack - waiting
-        np.copyto(self._next, self._load, where=cycle.arrival)
-        return None
-
-    def select(self, cycle: Cycle, rows: IntArray | None) -> IntArray:
-        """Least slack among candidates; the holder keeps the grant on a tie."""
-        return least_key_holder_first(cycle.candidates, self._next, cycle.owner)
-
-    def commit(self, cycle: Cycle, selected: BoolArray, best: IntArray) -> None:
-        """Register the slack counters' next values."""
-        self.slack = self._next
+        load = deadline - transfer - 1 + (1 << (bits - 1))
+        super().__init__(load.astype(counter_type(bits)), keep_while_moving=True)
 
 
 class ResourceOptimizedEdf:

@@ -9,9 +9,14 @@ import pytest
 from tests.support.cli import run_rfc
 
 
+@pytest.fixture(scope="module")
+def module_cache(tmp_path_factory):
+    return tmp_path_factory.mktemp("synthesis-cache")
+
+
 @pytest.fixture(autouse=True)
-def private_cache(tmp_path, monkeypatch):
-    monkeypatch.setenv("RFC_CACHE_DIR", str(tmp_path / "cache"))
+def private_cache(module_cache, monkeypatch):
+    monkeypatch.setenv("RFC_CACHE_DIR", str(module_cache))
 
 
 def synth_json(*args):
@@ -31,7 +36,8 @@ def test_json_has_the_contract_keys(algorithm, latency):
     assert report["grant_latency_cycles"] == latency
 
 
-def test_a_second_run_comes_from_the_cache_with_the_same_figures(tmp_path):
+def test_a_second_run_comes_from_the_cache_with_the_same_figures(tmp_path, monkeypatch):
+    monkeypatch.setenv("RFC_CACHE_DIR", str(tmp_path / "fresh-cache"))
     first = synth_json("-a", "PFP", "-n", "3", "-o", str(tmp_path / "hdl"))
     second = synth_json("-a", "PFP", "-n", "3")
     assert (first["cached"], second["cached"]) == (False, True)
@@ -47,7 +53,7 @@ def test_a_composition_is_a_scheduler_too():
 
 
 def test_table_output_names_the_figures():
-    result = run_rfc("sched", "synth", "-a", "NPFP", "-n", "2")
+    result = run_rfc("sched", "synth", "-a", "NPFP", "-n", "4")
     assert result.returncode == 0, result.stderr
     assert "LUTs" in result.stdout
     assert "grant latency" in result.stdout

@@ -1,7 +1,9 @@
 """Benchmark: scheduler-cycles per second of the vectorized models (one core).
 
 A scheduler-cycle is one clock cycle of one replicate. The DSE (issue 6) needs about 1e8 per
-minute on 2 cores for its full sweep, i.e. about 8.3e5 per second per core. Traffic comes from
+minute on 2 cores for its full sweep, i.e. about 8.3e5 per second per core ("ratio" column).
+"vs SimSo" compares with DESIGN.md §12's anchor (EDF, N = 256: 50,000 cycles in 31 s) per
+replicate-cycle. Traffic comes from
 `Publishers` (DSE-like: T ~ 100, F ~ 100, all released at cycle 0) and its cost is reported
 apart from the scheduler's own `step`.
 
@@ -21,6 +23,8 @@ from rfc.lib.schedulers.model.traffic import Publishers
 from rfc.lib.schedulers.spec import Algorithm
 
 TARGET_PER_CORE = 1e8 / 60 / 2
+#: DESIGN.md §12 anchor: SimSo simulates EDF with N = 256 for 50,000 cycles in 31 s.
+SIMSO_CYCLES_PER_SECOND = 50_000 / 31
 
 
 def measure(algorithm: str, n: int, batch: int, cycles: int) -> tuple[float, float]:
@@ -47,14 +51,17 @@ def main() -> None:
     parser.add_argument("--cycles", type=int, default=2000)
     args = parser.parse_args()
     print(f"target: {TARGET_PER_CORE:.3g} scheduler-cycles/s per core")
-    print(f"{'algorithm':9} {'N':>4} {'R':>5} {'step only':>12} {'with traffic':>13} {'ratio':>6}")
+    print(
+        f"{'algorithm':9} {'N':>4} {'R':>5} {'step only':>12} {'with traffic':>13} "
+        f"{'ratio':>6} {'vs SimSo':>9}"
+    )
     for algorithm in Algorithm:
         for n in args.n:
             for batch in args.batch:
                 alone, loaded = measure(algorithm.value, n, batch, args.cycles)
                 print(
                     f"{algorithm.value:9} {n:4} {batch:5} {alone:12.3g} {loaded:13.3g} "
-                    f"{loaded / TARGET_PER_CORE:6.2f}",
+                    f"{loaded / TARGET_PER_CORE:6.2f} {loaded / SIMSO_CYCLES_PER_SECOND:8.0f}x",
                     flush=True,
                 )
 

@@ -14,6 +14,7 @@ from rich.console import Console
 from rfc import __version__
 from rfc.cli.build import build_app
 from rfc.cli.msg import msg_app
+from rfc.cli.sched import sched_app
 from rfc.cli.sim import sim_app
 from rfc.errors import RfcError
 
@@ -27,6 +28,7 @@ app = typer.Typer(
 app.add_typer(msg_app, name="msg")
 app.add_typer(build_app)
 app.add_typer(sim_app)
+app.add_typer(sched_app, name="sched")
 
 
 def _version(value: bool) -> None:

@@ -6,7 +6,7 @@ co-simulation — so the converters, schedulers and whole systems share these fu
 """
 
 from rfc.toolchain.cocotb_sim import CosimError, run_cocotb
-from rfc.toolchain.convert import convert_myhdl
+from rfc.toolchain.convert import convert_myhdl, start_new_design
 from rfc.toolchain.ghdl import GhdlError, analyze, synthesize_verilog
 from rfc.toolchain.yosys import Resources, estimate_resources
 
@@ -18,5 +18,6 @@ __all__ = [
     "convert_myhdl",
     "estimate_resources",
     "run_cocotb",
+    "start_new_design",
     "synthesize_verilog",
 ]

@@ -10,7 +10,7 @@ signal has two drivers. Rendering is VHDL-2008 with direct entity instantiation.
 from __future__ import annotations
 
 import re
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
 from enum import StrEnum
 
@@ -185,6 +185,15 @@ class Netlist:
             raise NetlistError(f"{target.text} <= {source.text}: widths or kinds differ")
         value = source if isinstance(source, Net) else Net(source, target.bits, target.wire)
         self._assignments.append((target, value))
+
+    def instances(self) -> Iterator[tuple[str, EntityDecl, Mapping[str, Net | None]]]:
+        """Each instance's label, entity and port connections, in the order they were added."""
+        for instance in self._instances:
+            yield instance.label, instance.entity, instance.connections
+
+    def assignments(self) -> tuple[tuple[Net, Net], ...]:
+        """The concurrent assignments ``(target, source)``."""
+        return tuple(self._assignments)
 
     def check(self) -> None:
         """Every signal bit has exactly one driver and every netlist output is driven.

@@ -99,6 +99,8 @@ def read_entities(path: Path) -> list[VhdlEntity]:
     """
     path = Path(path).resolve()
     with tempfile.TemporaryDirectory(prefix="rfc-ghdl-") as scratch:
+        # --file-to-xml exits 0 even when the file does not parse: check the syntax first.
+        _ghdl(["-s", f"--std={STANDARD}", "-fsynopsys", str(path)], Path(scratch))
         text = _ghdl(["--file-to-xml", f"--std={STANDARD}", "-fsynopsys", str(path)], Path(scratch))
     root = ElementTree.fromstring(text)
     by_id = {el.get("id"): el for el in root.iter() if el.get("id")}

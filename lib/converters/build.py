@@ -18,7 +18,7 @@ from rfc.lib.converters.ports import Port, Side, dma_ports, ports_of
 from rfc.lib.converters.publisher import publisher_ports, rfc_publisher
 from rfc.lib.converters.steps import Plan
 from rfc.lib.converters.subscriber import rfc_subscriber, subscriber_ports
-from rfc.lib.converters.toplevel import port_signals, quick_call_info, top_block
+from rfc.lib.converters.toplevel import elaboration, port_signals, top_block
 from rfc.toolchain import convert_myhdl
 
 
@@ -81,7 +81,7 @@ def generate(plan: Plan, side: Side, directory: Path, name: str | None = None) -
     ports = (*dma_ports(plan, side), *ports_of(plan, side))
     top = subscriber_top if side is Side.SUBSCRIBER else publisher_top
     header = f"{name}: {side.value} of {plan.layout.display_name}, {8 * plan.width}-bit bus (rfc)"
-    with quick_call_info(), warnings.catch_warnings():
+    with elaboration(), warnings.catch_warnings():
         # MyHDL notes every unread or constant internal signal; the designs have many by plan.
         warnings.simplefilter("ignore", ToVHDLWarning)
         warnings.simplefilter("ignore", ToVerilogWarning)

@@ -134,6 +134,7 @@ def counted_stage(count: Any, gap_in: Any, gap_out: Any, pad: Any, term: Any, st
     mask = stage.align - 1
     scale, fixed, sequence = stage.scale, stage.fixed, stage.sequence
     low_bits = min(3, len(count))
+    bits = len(term)  # wide enough for count * scale: no truncation in VHDL arithmetic
     # An empty sequence adds nothing; padding before elements needs at least one.
     conditional = sequence or stage.align > 1
 
@@ -144,6 +145,7 @@ def counted_stage(count: Any, gap_in: Any, gap_out: Any, pad: Any, term: Any, st
             low[bit] = count[bit]
         padding = intbv(0)[3:]
         padding[:] = gap_in & mask
+        wide = intbv(0)[bits:]
         added = 0
         if count == 0:
             if conditional:
@@ -153,10 +155,12 @@ def counted_stage(count: Any, gap_in: Any, gap_out: Any, pad: Any, term: Any, st
             term.next = 0
         elif sequence:
             added = ((int(low) + 7) * scale + fixed) % 8
-            term.next = (count - 1) * scale + fixed
+            wide[:] = count - 1
+            term.next = wide * scale + fixed
         else:
             added = (int(low) * scale + fixed) % 8
-            term.next = count * scale
+            wide[:] = count
+            term.next = wide * scale
         pad.next = padding
         gap_out.next = (int(gap_in) + 16 - int(padding) - added) % 8
 

@@ -1,7 +1,8 @@
 """The subscriber's outputs besides field registers: lengths, element handshakes, sub-streams.
 
 Lengths and counts are registers written when their step begins. Element channels signal
-``valid`` while the parser waits at the element's Next step, with ``last`` on the final one.
+``valid`` while the parser waits at the element's Next step, once every sub-stream beat before
+it has been taken, with ``last`` on the final element.
 All sub-streams share one output register; each stream's ports see it, and its ``tvalid``
 only while the register holds one of its beats.
 """
@@ -46,19 +47,20 @@ def length_registers(plan: Plan, ports: dict[str, Any], clk: Any, rst: Any, fire
 
 
 @block
-def element_handshake(pc: Any, at: int, counter: Any, valid: Any, last: Any) -> Any:
-    """An element is valid while the parser waits at its Next step (`at`)."""
+def element_handshake(pc: Any, at: int, busy: Any, counter: Any, valid: Any, last: Any) -> Any:
+    """An element is valid while the parser waits at its Next step (`at`), streams sent."""
 
     @always_comb
     def status() -> None:
-        valid.next = pc == at
+        valid.next = pc == at and not busy
         last.next = counter == 1
 
     return status
 
 
 @block
-def element_handshakes(plan: Plan, ports: dict[str, Any], pc: Any, counters: list[Any]) -> Any:
+def element_handshakes(plan: Plan, ports: dict[str, Any], pc: Any, busy: Any, counters: list[Any]
+                       ) -> Any:  # fmt: skip
     """One `element_handshake` per selected element channel."""
     loops = [step for step in plan.steps if isinstance(step, Loop)]
     blocks = []
@@ -66,7 +68,7 @@ def element_handshakes(plan: Plan, ports: dict[str, Any], pc: Any, counters: lis
         channel = plan.channels[loop.element_channel]
         if channel.selected:
             valid, last = ports[f"{channel.name}_valid"], ports[f"{channel.name}_last"]
-            blocks.append(element_handshake(pc, loop.next, counter, valid, last))
+            blocks.append(element_handshake(pc, loop.next, busy, counter, valid, last))
     return blocks
 
 

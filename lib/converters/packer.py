@@ -104,7 +104,7 @@ def byte_packer(
             if lane < give:
                 for bit in range(8):
                     incoming[8 * lane + bit] = data[8 * lane + bit]
-        held.next = merged | (incoming << (8 * kept))
+        held.next = merged | (incoming << (8 * int(kept)))
         count.next = kept + give
         if start:
             remaining.next = length

@@ -126,7 +126,9 @@ def rfc_publisher(plan: Plan, **ports: Any) -> Any:
     owner_valid = Signal(bool(1)) if len(channel_valids) > 1 else Constant(bool(1))
     lengths = [Constant(intbv(0)[32:])] + [ports[name] for name in length_names]
     length_bus = (
-        ConcatSignal(*reversed([_widened(s) for s in lengths])) if length_names else lengths[0]
+        ConcatSignal(*[part for s in reversed(lengths) for part in _widened(s)])
+        if length_names
+        else lengths[0]
     )
     streams = [plan.steps[at] for at in t.streams]
     stream_valid = Signal(bool(0)) if streams else Constant(bool(0))
@@ -332,11 +334,11 @@ def rfc_publisher(plan: Plan, **ports: Any) -> Any:
     return blocks
 
 
-def _widened(signal: Any) -> Any:
-    """A length input zero-extended to 32 bits, for the bus the control selects from."""
+def _widened(signal: Any) -> list[Any]:
+    """A length input zero-extended to 32 bits: parts of the (flat) bus the control reads."""
     if len(signal) >= 32:
-        return signal
-    return ConcatSignal(intbv(0)[32 - len(signal) :], signal)
+        return [signal]
+    return [intbv(0)[32 - len(signal) :], signal]
 
 
 @block

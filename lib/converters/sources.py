@@ -44,11 +44,15 @@ def prefix_value(length: Any, terminator: int, prefix: Any) -> Any:
     return add
 
 
-def _byte(source: Any, index: int) -> Any:
-    """Byte `index` of a signal, a one-bit bool widened to a byte."""
+def _byte(source: Any, index: int) -> list[Any]:
+    """Byte `index` of a signal as parts of a `ConcatSignal`, high first (a bool: 0 or 1).
+
+    Parts are signals, slices and constants only: MyHDL converts a `ConcatSignal` nested in
+    another as its initial value, so every bus is built flat from such parts.
+    """
     if len(source) == 1:
-        return ConcatSignal(intbv(0)[7:], source)
-    return source(8 * index + 8, 8 * index)
+        return [intbv(0)[7:], source]
+    return [source(8 * index + 8, 8 * index)]
 
 
 @block
@@ -58,8 +62,8 @@ def record_sources(plan: Plan, ports: dict[str, Any], rc: Any, lanes: list[Any])
     width = plan.width
     entries: list[list[Any]] = [[] for _ in range(width)]
     table = [[0] * t.record_chunks for _ in range(width)]
-    zero = Constant(intbv(0)[8:])
-    header = [Constant(intbv(value)[8:]) for value in CDR_HEADER]
+    zero = [intbv(0)[8:]]
+    header = [[intbv(value)[8:]] for value in CDR_HEADER]
     blocks = []
     for pc, step in enumerate(plan.steps):
         if not isinstance(step, Record):
@@ -87,8 +91,9 @@ def record_sources(plan: Plan, ports: dict[str, Any], rc: Any, lanes: list[Any])
                     table[lane][run.rc] = len(entries[lane]) + 1
                     entries[lane].append(source)
     for lane in range(width):
-        bus = ConcatSignal(*reversed([zero, *entries[lane]]))
-        blocks.append(lane_select(bus, tuple(table[lane]), rc, lanes[lane]))
+        if entries[lane]:  # a lane no record reaches stays undriven: it is never given
+            parts = [part for entry in reversed([zero, *entries[lane]]) for part in entry]
+            blocks.append(lane_select(ConcatSignal(*parts), tuple(table[lane]), rc, lanes[lane]))
     return blocks
 
 
@@ -106,7 +111,7 @@ def lane_pick(bus: Any, index: Any, out: Any) -> Any:
     @always_comb
     def pick() -> None:
         for bit in range(8):
-            out.next[bit] = bus[8 * index + bit]
+            out.next[bit] = bus[8 * int(index) + bit]
 
     return pick
 
@@ -131,15 +136,14 @@ def payload_sources(plan: Plan, ports: dict[str, Any], index: Any, lanes: list[A
     """
     t = tables(plan)
     width = plan.width
-    zero = Constant(intbv(0)[8:])
-    entries: list[list[Any]] = [[zero] for _ in range(width)]
+    entries: list[list[Any]] = [[intbv(0)[8:]] for _ in range(width)]
     for pc in t.streams:
         step = plan.steps[pc]
         assert isinstance(step, Payload)
         data = ports[f"{step.stream}_tdata"]
         for piece in range(t.pieces[pc]):
             for lane in range(width):
-                entries[lane].append(_byte(data, piece * width + lane))
+                entries[lane] += _byte(data, piece * width + lane)
     return [
         lane_pick(ConcatSignal(*reversed(entries[lane])), index, lanes[lane])
         for lane in range(width)

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from myhdl import Constant, Signal, always_comb, always_seq, block, intbv
+from myhdl import Constant, Signal, always_comb, always_seq, block, concat, intbv
 
 from rfc.lib.converters.fields import field_captures
 from rfc.lib.converters.outputs import element_handshakes, length_registers, stream_outputs
@@ -264,7 +264,7 @@ def rfc_subscriber(plan: Plan, **ports: Any) -> Any:
                     rem_n.next = rem - step
                     if terminated and rem <= width and not abort:
                         for bit in range(8):
-                            if front[8 * (rem - 1) + bit]:
+                            if front[8 * (int(rem[4:]) - 1) + bit]:
                                 abort_n.next = True
                     if selected and chars > 0:
                         assembled = intbv(0)[8 * out_bytes :]
@@ -309,7 +309,7 @@ def rfc_subscriber(plan: Plan, **ports: Any) -> Any:
                 load_loop.next = True
                 pc_n.next = pc + 1
         elif kind == Kind.NEXT:
-            if channel_ready:
+            if channel_ready and not o_valid:
                 next_element.next = True
                 if more:
                     pc_n.next = target
@@ -320,19 +320,19 @@ def rfc_subscriber(plan: Plan, **ports: Any) -> Any:
             if avail < width:
                 step = int(avail)
             take.next = step
-            if trail + step > 7:
+            if int(trail) + step > 7:  # int(): unsigned sums keep the operands' width in VHDL
                 trail_n.next = 7
             else:
-                trail_n.next = trail + step
+                trail_n.next = int(trail) + step
             step = 0
-        elif msg_ready:
+        elif msg_ready and not o_valid:
             finished.next = True
             release.next = True
             pc_n.next = 0
             abort_n.next = False
             trail_n.next = 0
         shifted = intbv(0)[8 * width + 32 :]
-        shifted[:] = ((data << 32) | last4) >> (8 * step)
+        shifted[:] = concat(data, last4) >> (8 * step)
         last4_n.next = shifted[32:]
         if kind == Kind.END:
             gap_n.next = start_gap
@@ -367,7 +367,7 @@ def rfc_subscriber(plan: Plan, **ports: Any) -> Any:
 
     @always_comb
     def message_handshake() -> None:
-        msg_valid.next = pc == end_pc and ended and avail == 0
+        msg_valid.next = pc == end_pc and ended and avail == 0 and not o_valid
         msg_error.next = failed
         error_count.next = errors
 
@@ -381,6 +381,6 @@ def rfc_subscriber(plan: Plan, **ports: Any) -> Any:
             plan, clk, rst, pc, count, load_loop, next_element, loop_counts, loop_more, more
         )
     )
-    blocks.append(element_handshakes(plan, ports, pc, loop_counts))
+    blocks.append(element_handshakes(plan, ports, pc, o_valid, loop_counts))
     blocks.append(stream_outputs(plan, ports, o_data, o_keep, o_last, o_valid, o_stream, o_ready))
     return blocks

@@ -21,6 +21,7 @@ from collections.abc import Callable, Iterator, Sequence
 from typing import Any
 
 from myhdl import ResetSignal, Signal, block, intbv
+from myhdl import _block as myhdl_block
 
 from rfc.lib.converters.ports import Port, PortRole
 
@@ -101,13 +102,20 @@ def top_block(
 
 
 @contextlib.contextmanager
-def quick_call_info() -> Iterator[None]:
-    """Make MyHDL's elaboration and conversion of designs with many processes fast.
+def elaboration() -> Iterator[None]:
+    """Elaborate and convert MyHDL designs quickly, with names that do not depend on history.
 
-    MyHDL calls `inspect.stack()` for every block and process it creates, to learn its caller;
-    the standard one reads the source context of every frame on the stack, which dominates the
-    time to elaborate a converter with hundreds of field registers. Within this context (which
-    is not thread-safe), `inspect.stack` returns the same frames without source context.
+    Two things in MyHDL (0.11.52) need help when one process generates many designs:
+
+    * it calls `inspect.stack()` for every block and process it creates, to learn its caller;
+      the standard one reads the source context of every frame on the stack, which dominates
+      the time to elaborate a converter with hundreds of field registers. Within this context
+      `inspect.stack` returns the same frames without source context;
+    * it makes block names unique against every name used since the process started, growing
+      them with each design (``x_0_1_2 ...``) until VHDL refuses them; the context starts from
+      an empty set of names.
+
+    The context is not thread-safe.
     """
     original = inspect.stack
 
@@ -122,6 +130,8 @@ def quick_call_info() -> Iterator[None]:
             frame = frame.f_back
         return records
 
+    myhdl_block._name_set.clear()
+    myhdl_block._inst_name_set.clear()
     inspect.stack = stack
     try:
         yield

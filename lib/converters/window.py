@@ -71,7 +71,7 @@ def byte_window(
         kept = intbv(0, min=0, max=size + 1)
         kept[:] = count - take
         merged = intbv(0)[8 * size :]
-        merged[:] = buffer >> (8 * take)
+        merged[:] = buffer >> (8 * int(take))
         if tvalid and count <= width and not done:
             beat = intbv(0)[8 * size :]
             added = 0
@@ -80,7 +80,7 @@ def byte_window(
                     added = lane + 1
                     for bit in range(8):
                         beat[8 * lane + bit] = tdata[8 * lane + bit]
-            merged[:] = merged | (beat << (8 * kept))
+            merged[:] = merged | (beat << (8 * int(kept)))
             count.next = kept + added
             done.next = tlast
         else:

@@ -14,7 +14,7 @@ from myhdl import StopSimulation, always, block, delay, instance, join
 from rfc.lib.converters.build import publisher_top, subscriber_top
 from rfc.lib.converters.ports import Direction, PortRole, Side, dma_ports, ports_of
 from rfc.lib.converters.steps import Plan
-from rfc.lib.converters.toplevel import port_signals
+from rfc.lib.converters.toplevel import elaboration, port_signals
 from rfc.lib.converters.transactions import Transactions
 
 #: Cycles a bench may run before it gives up (a hang is a failure, not a wait).
@@ -116,7 +116,9 @@ def simulate_subscriber(plan: Plan, frames: list[bytes], seed: int = 1) -> list[
 
         return dut, clock, drive, consume
 
-    bench().run_sim(quiet=1)
+    with elaboration():
+        simulation = bench()
+    simulation.run_sim(quiet=1)
     return results
 
 
@@ -205,7 +207,9 @@ def simulate_publisher(
 
         return dut, clock, drive, collect
 
-    bench().run_sim(quiet=1)
+    with elaboration():
+        simulation = bench()
+    simulation.run_sim(quiet=1)
     return results
 
 

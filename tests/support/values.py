@@ -32,34 +32,38 @@ def primitive(type_name: str) -> st.SearchStrategy[Any]:
     return st.integers(int(info.min), int(info.max))
 
 
-def text(bound: int) -> st.SearchStrategy[str]:
+def text(bound: int, long: int = LONG) -> st.SearchStrategy[str]:
     if bound:
         # A bound counts bytes on the wire: keep bounded strings ASCII.
-        return _length(bound).flatmap(
+        return _length(bound, long).flatmap(
             lambda n: st.text(st.characters(codec="ascii"), min_size=n, max_size=n)
         )
-    return st.one_of(st.text(max_size=SHORT), st.text(min_size=LONG, max_size=LONG + 40))
+    return st.one_of(st.text(max_size=SHORT), st.text(min_size=long, max_size=long + 40))
 
 
-def field_values(field: LayoutField, depth: int = 0) -> st.SearchStrategy[Any]:
+def field_values(field: LayoutField, depth: int = 0, long: int = LONG) -> st.SearchStrategy[Any]:
     if field.kind is FieldKind.PRIMITIVE:
         return primitive(field.element_type)
     if field.kind is FieldKind.STRING:
-        return text(field.bound)
+        return text(field.bound, long)
     if field.element is not None:
-        return st.lists(layout_values(field.element, depth + 1), max_size=field.bound or 3 - depth)
+        return st.lists(
+            layout_values(field.element, depth + 1, long), max_size=field.bound or 3 - depth
+        )
     if field.element_type == "string":
-        return st.lists(text(field.string_bound), max_size=field.bound or SHORT)
+        return st.lists(text(field.string_bound, long), max_size=field.bound or SHORT)
     return hnp.arrays(
         PRIMITIVE_DTYPES[field.element_type],
-        _length(field.bound),
+        _length(field.bound, long),
         elements=primitive(field.element_type),
     )
 
 
-def layout_values(layout: Layout, depth: int = 0) -> st.SearchStrategy[dict[str, Any]]:
-    """Flat values for every leaf of a layout."""
-    return st.fixed_dictionaries({f.path: field_values(f, depth) for f in layout.fields})
+def layout_values(
+    layout: Layout, depth: int = 0, long: int = LONG
+) -> st.SearchStrategy[dict[str, Any]]:
+    """Flat values for every leaf of a layout; `long` is the size of long strings and arrays."""
+    return st.fixed_dictionaries({f.path: field_values(f, depth, long) for f in layout.fields})
 
 
 def same(a: Any, b: Any) -> bool:

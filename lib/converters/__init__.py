@@ -1,0 +1,1 @@
+"""Hardware message converters: subscriber, publisher and frame-length circuit (paper §4.2)."""

@@ -1,0 +1,117 @@
+"""The subscriber's outputs besides field registers: lengths, element handshakes, sub-streams.
+
+Lengths and counts are registers written when their step begins. Element channels signal
+``valid`` while the parser waits at the element's Next step, once every sub-stream beat before
+it has been taken, with ``last`` on the final element.
+All sub-streams share one output register; each stream's ports see it, and its ``tvalid``
+only while the register holds one of its beats.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from myhdl import always_comb, always_seq, block
+
+from rfc.lib.converters.steps import Loop, Payload, Plan
+from rfc.lib.converters.tables import tables
+from rfc.lib.converters.wiring import bits_of, follow, index_bit
+
+
+@block
+def length_register(clk: Any, rst: Any, fire: Any, pc: Any, at: int, value: Any, port: Any) -> Any:
+    """Write `value` to `port` when step `at` begins (`fire`)."""
+
+    @always_seq(clk.posedge, reset=rst)
+    def write() -> None:
+        if fire and pc == at:
+            port.next = value[len(port) :]
+
+    return write
+
+
+@block
+def length_registers(plan: Plan, ports: dict[str, Any], clk: Any, rst: Any, fire: Any, pc: Any,
+                     value: Any) -> Any:  # fmt: skip
+    """One `length_register` per selected string or sequence."""
+    blocks = []
+    for at, step in enumerate(plan.steps):
+        name = None
+        if isinstance(step, Payload):
+            name = step.length_port
+        elif isinstance(step, Loop):
+            name = step.count_port
+        if name:
+            blocks.append(length_register(clk, rst, fire, pc, at, value, ports[name]))
+    return blocks
+
+
+@block
+def element_handshake(pc: Any, at: int, busy: Any, counter: Any, valid: Any, last: Any) -> Any:
+    """An element is valid while the parser waits at its Next step (`at`), streams sent."""
+
+    @always_comb
+    def status() -> None:
+        valid.next = pc == at and not busy
+        last.next = counter == 1
+
+    return status
+
+
+@block
+def element_handshakes(plan: Plan, ports: dict[str, Any], pc: Any, busy: Any, counters: list[Any]
+                       ) -> Any:  # fmt: skip
+    """One `element_handshake` per selected element channel."""
+    loops = [step for step in plan.steps if isinstance(step, Loop)]
+    blocks = []
+    for loop, counter in zip(loops, counters, strict=True):
+        channel = plan.channels[loop.element_channel]
+        if channel.selected:
+            valid, last = ports[f"{channel.name}_valid"], ports[f"{channel.name}_last"]
+            blocks.append(element_handshake(pc, loop.next, busy, counter, valid, last))
+    return blocks
+
+
+@block
+def stream_port(o_data: Any, o_keep: Any, o_last: Any, o_valid: Any, o_stream: Any, index: int,
+                tdata: Any, tkeep: Any, tvalid: Any, tlast: Any) -> Any:  # fmt: skip
+    """The ports of sub-stream `index`, driven from the shared output register."""
+
+    @always_comb
+    def drive() -> None:
+        tdata.next = o_data[len(tdata) :]
+        tkeep.next = o_keep[len(tkeep) :]
+        tvalid.next = o_valid and o_stream == index
+        tlast.next = o_last
+
+    return drive
+
+
+@block
+def stream_outputs(plan: Plan, ports: dict[str, Any], o_data: Any, o_keep: Any, o_last: Any,
+                   o_valid: Any, o_stream: Any, o_ready: Any) -> Any:  # fmt: skip
+    """Every sub-stream's ports; `o_ready` is the ready of the stream the register serves."""
+    blocks = []
+    readies = []
+    for index, at in enumerate(tables(plan).streams):
+        name = plan.steps[at].stream
+        blocks.append(
+            stream_port(
+                o_data,
+                o_keep,
+                o_last,
+                o_valid,
+                o_stream,
+                index,
+                ports[f"{name}_tdata"],
+                ports[f"{name}_tkeep"],
+                ports[f"{name}_tvalid"],
+                ports[f"{name}_tlast"],
+            )
+        )
+        readies.append(ports[f"{name}_tready"])
+    if len(readies) > 1:
+        blocks.append(index_bit(bits_of(readies), o_stream, o_ready))
+    elif readies:
+        blocks.append(follow(readies[0], o_ready))
+    return blocks

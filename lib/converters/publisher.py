@@ -1,0 +1,393 @@
+"""The publisher converter: the accelerator's fields and streams in, a frame on AXI-Stream out.
+
+It walks the same plan as the subscriber and gives the byte packer (`packer`) a record chunk,
+a payload chunk or padding per cycle. Record bytes come from fixed sources per lane
+(`sources`): field inputs, length prefixes computed from the length inputs, the CDR header,
+zeros for excluded fields and padding. Strings and sequences are pulled from their sub-streams
+when their turn comes; each element of a sequence of messages is taken from its channel when
+its first byte is due and acknowledged when its last one is out.
+
+The frame's length is known before the first beat: folded at compile time for a fixed-size
+message, computed by the frame-length circuit (`frame_length`) from the length inputs
+otherwise, and counted through a frame buffer (`frame_buffer`) when the plan is
+store-and-forward. ``frame_length`` holds it from the first beat to the last.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from myhdl import ConcatSignal, Constant, Signal, always_comb, always_seq, block, intbv
+
+from rfc.lib.converters.frame_buffer import frame_buffer
+from rfc.lib.converters.frame_length import frame_length_circuit
+from rfc.lib.converters.packer import byte_packer
+from rfc.lib.converters.ports import COUNTER_BITS, Side, count_bits, dma_ports, ports_of
+from rfc.lib.converters.sources import payload_bases, payload_sources, record_sources
+from rfc.lib.converters.steps import End, Loop, Next, Payload, Plan, Record
+from rfc.lib.converters.tables import Kind, tables
+from rfc.lib.converters.wiring import bits_of, follow, loop_counters, select_bit
+
+
+def publisher_ports(plan: Plan) -> list[str]:
+    """Port names of the publisher entity, in declaration order."""
+    return [p.name for p in (*dma_ports(plan, Side.PUBLISHER), *ports_of(plan, Side.PUBLISHER))]
+
+
+def _owners(plan: Plan) -> tuple[int, ...]:
+    """Per step, the channel whose inputs it reads (0: the message)."""
+    owners = []
+    for step in plan.steps:
+        if isinstance(step, Record | Payload | Loop | Next):
+            owners.append(step.channel)
+        else:
+            assert isinstance(step, End)
+            owners.append(0)
+    return tuple(owners)
+
+
+def _length_inputs(plan: Plan) -> tuple[list[str], tuple[int, ...]]:
+    """The length and count input ports, and per step the position of its own (0: none)."""
+    names: list[str] = []
+    index = []
+    for step in plan.steps:
+        port = None
+        if isinstance(step, Payload):
+            port = step.length_port
+        elif isinstance(step, Loop):
+            port = step.count_port
+        if port:
+            names.append(port)
+            index.append(len(names))
+        else:
+            index.append(0)
+    return names, tuple(index)
+
+
+@block
+def rfc_publisher(plan: Plan, **ports: Any) -> Any:
+    """The publisher for `plan`; `ports` holds one signal per name of `publisher_ports`."""
+    t = tables(plan)
+    width = plan.width
+    clk, rst = ports["clk"], ports["rst"]
+    msg_valid, msg_ready = ports["msg_valid"], ports["msg_ready"]
+    pc_bits = max(1, (len(plan.steps) - 1).bit_length())
+    buffered = plan.store_and_forward
+    cdr = plan.is_cdr
+    start_gap = 4 if cdr else 0
+    count_width = count_bits(max([1, *t.maximum]))
+    rem_bits = count_width + 4
+    bases = payload_bases(plan)
+    owner_rom = _owners(plan)
+    length_names, length_rom = _length_inputs(plan)
+    kind_rom, align_rom, chunks_rom, last_rom, base_rom = (
+        t.kind,
+        t.align_mask,
+        t.chunks,
+        t.last_size,
+        t.base,
+    )
+    shift_rom, term_rom, pieces_rom, element_rom = t.shift, t.terminator, t.pieces, t.element_mask
+    bool_rom, target_rom = t.is_bool, t.target
+
+    pc, pc_n = (Signal(intbv(0, min=0, max=2**pc_bits)) for _ in range(2))
+    chunk, chunk_n = (Signal(intbv(0, min=0, max=max(t.chunks) + 1)) for _ in range(2))
+    entered, entered_n = (Signal(bool(0)) for _ in range(2))
+    rem, rem_n = (Signal(intbv(0)[rem_bits:]) for _ in range(2))
+    piece, piece_n = (Signal(intbv(0, min=0, max=max(t.pieces) + 1)) for _ in range(2))
+    gap, gap_n = (Signal(intbv(start_gap)[3:]) for _ in range(2))
+    active, active_n = (Signal(bool(0)) for _ in range(2))
+    give = Signal(intbv(0, min=0, max=width + 1))
+    data = Signal(intbv(0)[8 * width :])
+    room, idle = Signal(bool(0)), Signal(bool(0))
+    start, flush, commit = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
+    load_loop, next_element = Signal(bool(0)), Signal(bool(0))
+    count = Signal(intbv(0)[32:])
+    rc = Signal(intbv(0, min=0, max=t.record_chunks + max(t.chunks) + 1))
+    record_lanes = [Signal(intbv(0)[8:]) for _ in range(width)]
+    record_bytes = ConcatSignal(*reversed(record_lanes)) if width > 1 else record_lanes[0]
+    piece_index = Signal(intbv(0, min=0, max=max(2, max(bases) + max(t.pieces) + 1)))
+    payload_lanes = [Signal(intbv(0)[8:]) for _ in range(width)]
+    payload_bytes = ConcatSignal(*reversed(payload_lanes)) if width > 1 else payload_lanes[0]
+    fixed = plan.layout.fixed_size
+    frame_total = Signal(intbv(0)[COUNTER_BITS:]) if fixed is None else Constant(intbv(fixed)[32:])
+    frame_length = ports["frame_length"]
+    written = Signal(intbv(0)[COUNTER_BITS:])
+    p_data = Signal(intbv(0)[8 * width :])
+    p_keep = Signal(intbv(0)[width:])
+    p_valid, p_last = Signal(bool(0)), Signal(bool(0))
+    p_ready = Constant(bool(1))  # the frame buffer takes every beat
+    busy = Signal(bool(0)) if buffered else Constant(bool(0))
+
+    channel_valids = [
+        ports[f"{c.name}_valid"] if c.index and c.selected else Constant(bool(1))
+        for c in plan.channels
+    ]
+    owner_valid = Signal(bool(1)) if len(channel_valids) > 1 else Constant(bool(1))
+    lengths = [Constant(intbv(0)[32:])] + [ports[name] for name in length_names]
+    length_bus = (
+        ConcatSignal(*[part for s in reversed(lengths) for part in _widened(s)])
+        if length_names
+        else lengths[0]
+    )
+    streams = [plan.steps[at] for at in t.streams]
+    stream_valid = Signal(bool(0)) if streams else Constant(bool(0))
+    stream_take = Signal(bool(0))
+    loop_counts = [Signal(intbv(0)[count_bits(plan.steps[at].maximum) :]) for at in t.loops]
+    loop_more = [Signal(bool(0)) for _ in t.loops]
+    more = Signal(bool(0)) if t.loops else Constant(bool(0))
+
+    @always_comb
+    def control() -> None:
+        kind = kind_rom[pc]
+        align = align_rom[pc]
+        chunks = chunks_rom[pc]
+        last_size = last_rom[pc]
+        base = base_rom[pc]
+        shift = shift_rom[pc]
+        term = term_rom[pc]
+        parts = pieces_rom[pc]
+        element = element_rom[pc]
+        bools = bool_rom[pc]
+        boolean = bools == 1
+        target = target_rom[pc]
+        slot = length_rom[pc]
+        payload_base = bases[pc]
+
+        pc_n.next = pc
+        chunk_n.next = chunk
+        entered_n.next = entered
+        rem_n.next = rem
+        piece_n.next = piece
+        active_n.next = active
+        give.next = 0
+        data.next = 0
+        start.next = False
+        flush.next = False
+        commit.next = False
+        load_loop.next = False
+        next_element.next = False
+        stream_take.next = False
+        msg_ready.next = False
+        rc.next = base + chunk
+        piece_index.next = payload_base + piece
+        step = 0
+        pad = intbv(0)[3:]
+        pad[:] = gap & align
+        value = intbv(0)[32:]
+        for bit in range(32):
+            value[bit] = length_bus[32 * slot + bit]
+        count.next = value
+
+        running = bool(active)
+        if not active and msg_valid and idle and not busy:
+            start.next = True
+            active_n.next = True
+            running = True
+        if running and owner_valid:
+            if kind == Kind.RECORD:
+                if chunk == 0 and pad != 0:
+                    step = int(pad)
+                    if pad > width:
+                        step = width
+                elif chunk == chunks - 1:
+                    step = last_size
+                else:
+                    step = width
+                if room:
+                    give.next = step
+                    if chunk != 0 or pad == 0:
+                        data.next = record_bytes
+                        if chunk == chunks - 1:
+                            pc_n.next = pc + 1
+                            chunk_n.next = 0
+                        else:
+                            chunk_n.next = chunk + 1
+                else:
+                    step = 0
+            elif kind == Kind.PAYLOAD:
+                if not entered:
+                    entered_n.next = True
+                    piece_n.next = 0
+                    rem_n.next = (value << shift) + term
+                elif rem == 0:
+                    pc_n.next = pc + 1
+                    entered_n.next = False
+                elif (gap & element) != 0 and piece == 0:
+                    pad[:] = gap & element
+                    step = int(pad)
+                    if pad > width:
+                        step = width
+                    if room:
+                        give.next = step
+                    else:
+                        step = 0
+                else:
+                    step = width
+                    if rem < width:
+                        step = int(rem)
+                    chars = step
+                    if term == 1 and rem <= width:
+                        chars = step - 1
+                    if room and (chars == 0 or stream_valid):
+                        give.next = step
+                        rem_n.next = rem - step
+                        if piece == parts - 1 or rem <= width:
+                            piece_n.next = 0
+                            stream_take.next = chars > 0
+                        else:
+                            piece_n.next = piece + 1
+                        masked = intbv(0)[8 * width :]
+                        for lane in range(width):
+                            if lane < chars:
+                                nonzero = False
+                                for bit in range(8):
+                                    if payload_bytes[8 * lane + bit]:
+                                        nonzero = True
+                                for bit in range(8):
+                                    if boolean:
+                                        masked[8 * lane + bit] = bit == 0 and nonzero
+                                    else:
+                                        masked[8 * lane + bit] = payload_bytes[8 * lane + bit]
+                        data.next = masked
+                    else:
+                        step = 0
+            elif kind == Kind.LOOP:
+                if value == 0:
+                    pc_n.next = target
+                else:
+                    load_loop.next = True
+                    pc_n.next = pc + 1
+            elif kind == Kind.NEXT:
+                next_element.next = True
+                if more:
+                    pc_n.next = target
+                else:
+                    pc_n.next = pc + 1
+            elif not buffered:
+                msg_ready.next = True
+                pc_n.next = 0
+                active_n.next = False
+            else:
+                flush.next = True
+                if idle and not p_valid:
+                    commit.next = True
+                    msg_ready.next = True
+                    pc_n.next = 0
+                    active_n.next = False
+        if kind == Kind.END:
+            gap_n.next = start_gap
+        else:
+            gap_n.next = (int(gap) + 8 - step) % 8
+
+    @always_seq(clk.posedge, reset=rst)
+    def registers() -> None:
+        pc.next = pc_n
+        chunk.next = chunk_n
+        entered.next = entered_n
+        rem.next = rem_n
+        piece.next = piece_n
+        gap.next = gap_n
+        active.next = active_n
+        if start:
+            written.next = give
+        else:
+            written.next = written + give
+        if start and not buffered:
+            frame_length.next = frame_total
+        elif commit:
+            frame_length.next = written
+
+    blocks = [control, registers, record_sources(plan, ports, rc, record_lanes)]
+    if len(channel_valids) > 1:
+        blocks.append(select_bit(bits_of(channel_valids), owner_rom, pc, owner_valid))
+    blocks.append(channel_readies(plan, ports, pc, next_element))
+    if streams:
+        blocks.append(payload_sources(plan, ports, piece_index, payload_lanes))
+        blocks.append(stream_handshakes(plan, ports, pc, stream_take, stream_valid))
+    blocks.append(
+        loop_counters(
+            plan, clk, rst, pc, count, load_loop, next_element, loop_counts, loop_more, more
+        )
+    )
+    if fixed is None and not buffered:
+        counts = {name: ports[name] for name in length_names}
+        blocks.append(frame_length_circuit(plan, counts, frame_total))
+    m_axis = [ports[f"m_axis_{name}"] for name in ("tdata", "tkeep", "tvalid", "tready", "tlast")]
+    if not buffered:
+        blocks.append(
+            byte_packer(clk, rst, give, data, room, start, frame_total, flush, idle, *m_axis, width)
+        )
+        return blocks
+    largest = Constant(intbv(2**COUNTER_BITS - 1)[COUNTER_BITS:])
+    packed = (p_data, p_keep, p_valid, p_ready, p_last)
+    blocks.append(
+        byte_packer(clk, rst, give, data, room, start, largest, flush, idle, *packed, width)
+    )
+    depth = -(-plan.limits.frame // width)
+    errors = ports["error_count"]
+    blocks.append(
+        frame_buffer(
+            clk, rst, p_data, p_valid, commit, written, busy, errors, *m_axis, width, depth
+        )
+    )
+    return blocks
+
+
+def _widened(signal: Any) -> list[Any]:
+    """A length input zero-extended to 32 bits: parts of the (flat) bus the control reads."""
+    if len(signal) >= 32:
+        return [signal]
+    return [intbv(0)[32 - len(signal) :], signal]
+
+
+@block
+def channel_ready(next_element: Any, pc: Any, at: int, ready: Any) -> Any:
+    """Acknowledge an element when its Next step (`at`) is done."""
+
+    @always_comb
+    def acknowledge() -> None:
+        ready.next = next_element and pc == at
+
+    return acknowledge
+
+
+@block
+def channel_readies(plan: Plan, ports: dict[str, Any], pc: Any, next_element: Any) -> Any:
+    """One `channel_ready` per selected element channel."""
+    blocks = []
+    for at, step in enumerate(plan.steps):
+        if isinstance(step, Next) and plan.channels[step.channel].selected:
+            ready = ports[f"{plan.channels[step.channel].name}_ready"]
+            blocks.append(channel_ready(next_element, pc, at, ready))
+    return blocks
+
+
+@block
+def stream_ready(take: Any, pc: Any, at: int, ready: Any) -> Any:
+    """Take a sub-stream beat when the payload step `at` has used all of it."""
+
+    @always_comb
+    def acknowledge() -> None:
+        ready.next = take and pc == at
+
+    return acknowledge
+
+
+@block
+def stream_handshakes(plan: Plan, ports: dict[str, Any], pc: Any, take: Any, valid: Any) -> Any:
+    """Sub-stream readies, and `valid`: the tvalid of the current step's sub-stream."""
+    t = tables(plan)
+    blocks = []
+    valids = []
+    table = [0] * len(plan.steps)
+    for index, at in enumerate(t.streams):
+        name = plan.steps[at].stream
+        blocks.append(stream_ready(take, pc, at, ports[f"{name}_tready"]))
+        valids.append(ports[f"{name}_tvalid"])
+        table[at] = index
+    if len(valids) > 1:
+        blocks.append(select_bit(bits_of(valids), tuple(table), pc, valid))
+    else:
+        blocks.append(follow(valids[0], valid))
+    return blocks

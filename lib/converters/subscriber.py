@@ -1,0 +1,386 @@
+"""The subscriber converter: a frame on AXI-Stream in, the message's fields and streams out.
+
+One control process walks the plan (`tables`) and consumes the byte window (`window`) a record
+chunk, a payload chunk or a padding run per cycle. Field registers capture their bytes straight
+from fixed bus lanes when their record chunk passes (`fields`); strings and primitive sequences
+leave through one shared output register demultiplexed to their sub-streams; each element of a
+sequence of messages or strings is handed over on its channel before the next is parsed.
+
+Malformed frames — early ``tlast``, a length beyond its maximum, a CDR string without its NUL,
+trailing bytes beyond ROS 2's padding to 4, a wrong CDR encapsulation — raise ``msg_error``
+and count in ``error_count``. From the first error on, the parser *aborts*: it stops reading
+the frame and walks the rest of the plan on zeros (lengths not yet read become 0), so every
+stream announced so far still delivers its announced length and every channel its elements;
+then it drops the frame's remaining bytes up to ``tlast`` and presents the record with
+``msg_error`` set. It never waits for anything but the frame's own bytes and the consumer's
+ready signals, so it never hangs.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from myhdl import Constant, Signal, always_comb, always_seq, block, concat, intbv
+
+from rfc.lib.converters.fields import field_captures
+from rfc.lib.converters.outputs import element_handshakes, length_registers, stream_outputs
+from rfc.lib.converters.ports import COUNTER_BITS, Side, count_bits, dma_ports, ports_of
+from rfc.lib.converters.steps import Plan
+from rfc.lib.converters.tables import Kind, tables
+from rfc.lib.converters.window import byte_window
+from rfc.lib.converters.wiring import bits_of, loop_counters, select_bit
+
+#: The two bytes a little-endian plain-CDR encapsulation header starts with, as a uint16.
+CDR_ENCAPSULATION = 0x0100
+
+
+def subscriber_ports(plan: Plan) -> list[str]:
+    """Port names of the subscriber entity, in declaration order."""
+    return [p.name for p in (*dma_ports(plan, Side.SUBSCRIBER), *ports_of(plan, Side.SUBSCRIBER))]
+
+
+@block
+def rfc_subscriber(plan: Plan, **ports: Any) -> Any:
+    """The subscriber for `plan`; `ports` holds one signal per name of `subscriber_ports`."""
+    t = tables(plan)
+    width = plan.width
+    clk, rst = ports["clk"], ports["rst"]
+    msg_valid, msg_ready, msg_error = ports["msg_valid"], ports["msg_ready"], ports["msg_error"]
+    error_count = ports["error_count"]
+    steps = len(plan.steps)
+    pc_bits = max(1, (steps - 1).bit_length())
+    end_pc = t.end
+    payloads = [plan.steps[pc] for pc in t.streams]
+    out_bytes = max([width] + [max(width, p.element_size) for p in payloads])
+    length_limit = max([1, *t.maximum])
+    count_width = count_bits(length_limit)
+    rem_bits = count_width + 4
+    cdr = plan.is_cdr
+    # Bytes from the frame's first byte to the next 8-byte boundary of the CDR payload.
+    start_gap = 4 if cdr else 0
+
+    # ---- the byte window
+    front = Signal(intbv(0)[8 * width :])
+    avail = Signal(intbv(0, min=0, max=2 * width + 1))
+    ended = Signal(bool(0))
+    take = Signal(intbv(0, min=0, max=width + 1))
+    release = Signal(bool(0))
+    window = byte_window(
+        clk,
+        rst,
+        ports["s_axis_tdata"],
+        ports["s_axis_tkeep"],
+        ports["s_axis_tvalid"],
+        ports["s_axis_tready"],
+        ports["s_axis_tlast"],
+        take,
+        release,
+        front,
+        avail,
+        ended,
+        width,
+    )
+
+    # ---- control registers and their next values
+    pc, pc_n = (Signal(intbv(0, min=0, max=2**pc_bits)) for _ in range(2))
+    chunk, chunk_n = (Signal(intbv(0, min=0, max=max(t.chunks) + 1)) for _ in range(2))
+    entered, entered_n = (Signal(bool(0)) for _ in range(2))
+    rem, rem_n = (Signal(intbv(0)[rem_bits:]) for _ in range(2))
+    piece, piece_n = (Signal(intbv(0, min=0, max=max(t.pieces) + 1)) for _ in range(2))
+    gap, gap_n = (Signal(intbv(start_gap)[3:]) for _ in range(2))
+    last4, last4_n = (Signal(intbv(0)[32:]) for _ in range(2))
+    abort, abort_n = (Signal(bool(0)) for _ in range(2))
+    trail, trail_n = (Signal(intbv(0)[3:]) for _ in range(2))
+    o_data, o_data_n = (Signal(intbv(0)[8 * out_bytes :]) for _ in range(2))
+    o_keep, o_keep_n = (Signal(intbv(0)[out_bytes:]) for _ in range(2))
+    o_last, o_last_n = (Signal(bool(0)) for _ in range(2))
+    o_valid, o_valid_n = (Signal(bool(0)) for _ in range(2))
+    o_stream, o_stream_n = (Signal(intbv(0, min=0, max=max(1, len(payloads)))) for _ in range(2))
+    errors = Signal(intbv(0)[COUNTER_BITS:])
+
+    # ---- events the control process raises for the data path
+    capture = Signal(bool(0))
+    rc = Signal(intbv(0, min=0, max=t.record_chunks + max(t.chunks) + 1))
+    lengths = Signal(bool(0))
+    count = Signal(intbv(0)[count_width:])
+    load_loop = Signal(bool(0))
+    next_element = Signal(bool(0))
+    data = Signal(intbv(0)[8 * width :])
+    finished = Signal(bool(0))
+    failed = Signal(bool(0))
+    header = Signal(intbv(0)[16:]) if cdr else Constant(intbv(CDR_ENCAPSULATION)[16:])
+
+    # ---- handshakes in from the consumer, selected by the current step
+    channel_ready = Signal(bool(1)) if len(plan.channels) > 1 else Constant(bool(1))
+    o_ready = Signal(bool(0)) if t.streams else Constant(bool(0))
+    loop_counts = [Signal(intbv(0)[count_bits(plan.steps[pc].maximum) :]) for pc in t.loops]
+    loop_more = [Signal(bool(0)) for _ in t.loops]
+    more = Signal(bool(0)) if t.loops else Constant(bool(0))
+    readies = [
+        ports[f"{c.name}_ready"] if c.index and c.selected else Constant(bool(1))
+        for c in plan.channels
+    ]
+    kind_rom, align_rom, chunks_rom, last_rom, base_rom = (
+        t.kind,
+        t.align_mask,
+        t.chunks,
+        t.last_size,
+        t.base,
+    )
+    shift_rom, term_rom, max_rom, stream_rom, selected_rom = (
+        t.shift,
+        t.terminator,
+        t.maximum,
+        t.stream,
+        t.selected,
+    )
+    pieces_rom, element_rom, bool_rom, target_rom = (
+        t.pieces,
+        t.element_mask,
+        t.is_bool,
+        t.target,
+    )
+
+    @always_comb
+    def zero_on_abort() -> None:
+        if abort:
+            data.next = 0
+        else:
+            data.next = front
+
+    @always_comb
+    def control() -> None:
+        kind = kind_rom[pc]
+        align = align_rom[pc]
+        chunks = chunks_rom[pc]
+        last_size = last_rom[pc]
+        base = base_rom[pc]
+        shift = shift_rom[pc]
+        term = term_rom[pc]
+        terminated = term == 1
+        maximum = max_rom[pc]
+        stream = stream_rom[pc]
+        chosen = selected_rom[pc]
+        selected = chosen == 1
+        parts = pieces_rom[pc]
+        element = element_rom[pc]
+        bools = bool_rom[pc]
+        boolean = bools == 1
+        target = target_rom[pc]
+
+        step = 0  # bytes the frame advances by this cycle (zeros when aborted)
+        pc_n.next = pc
+        chunk_n.next = chunk
+        entered_n.next = entered
+        rem_n.next = rem
+        piece_n.next = piece
+        abort_n.next = abort
+        trail_n.next = trail
+        o_data_n.next = o_data
+        o_keep_n.next = o_keep
+        o_last_n.next = o_last
+        o_valid_n.next = o_valid and not o_ready
+        o_stream_n.next = o_stream
+        take.next = 0
+        capture.next = False
+        lengths.next = False
+        load_loop.next = False
+        next_element.next = False
+        release.next = False
+        finished.next = False
+        count.next = 0
+        rc.next = base + chunk
+        length = intbv(0)[32:]
+        length[:] = last4
+        pad = intbv(0)[3:]
+        pad[:] = gap & align
+        chars = 0
+
+        if kind == Kind.RECORD:
+            if chunk == 0 and pad != 0:
+                step = int(pad)
+                if pad > width:
+                    step = width
+            elif chunk == chunks - 1:
+                step = last_size
+            else:
+                step = width
+            if abort or avail >= step:
+                if not abort:
+                    take.next = step
+                if chunk != 0 or pad == 0:
+                    capture.next = True
+                    if chunk == chunks - 1:
+                        pc_n.next = pc + 1
+                        chunk_n.next = 0
+                    else:
+                        chunk_n.next = chunk + 1
+            else:
+                step = 0
+                if ended:
+                    abort_n.next = True
+        elif kind == Kind.PAYLOAD:
+            if not entered:
+                lengths.next = True
+                entered_n.next = True
+                piece_n.next = 0
+                if (terminated and (length == 0 or length > maximum + 1)) or (
+                    not terminated and length > maximum
+                ):
+                    abort_n.next = True
+                    rem_n.next = 0
+                elif terminated:
+                    count.next = length - 1
+                    rem_n.next = length
+                else:
+                    count.next = length
+                    rem_n.next = length << shift
+            elif rem == 0:
+                pc_n.next = pc + 1
+                entered_n.next = False
+            elif (gap & element) != 0 and piece == 0:
+                pad[:] = gap & element
+                step = int(pad)
+                if pad > width:
+                    step = width
+                if abort or avail >= step:
+                    if not abort:
+                        take.next = step
+                else:
+                    step = 0
+                    if ended:
+                        abort_n.next = True
+            else:
+                step = width
+                if rem < width:
+                    step = int(rem)
+                chars = step
+                if terminated and rem <= width:
+                    chars = step - 1
+                free = not selected or not o_valid or o_ready
+                if (abort or avail >= step) and free:
+                    if not abort:
+                        take.next = step
+                    rem_n.next = rem - step
+                    if terminated and rem <= width and not abort:
+                        for bit in range(8):
+                            if front[8 * (int(rem[4:]) - 1) + bit]:
+                                abort_n.next = True
+                    if selected and chars > 0:
+                        assembled = intbv(0)[8 * out_bytes :]
+                        assembled[:] = o_data
+                        for lane in range(out_bytes):
+                            if lane // width == piece:
+                                nonzero = False
+                                for bit in range(8):
+                                    if data[8 * (lane % width) + bit]:
+                                        nonzero = True
+                                for bit in range(8):
+                                    if boolean:
+                                        assembled[8 * lane + bit] = bit == 0 and nonzero
+                                    else:
+                                        assembled[8 * lane + bit] = data[8 * (lane % width) + bit]
+                        o_data_n.next = assembled
+                        o_stream_n.next = stream
+                        if piece == parts - 1 or rem <= width:
+                            keep = intbv(0)[out_bytes:]
+                            for lane in range(out_bytes):
+                                keep[lane] = parts > 1 or lane < chars
+                            o_keep_n.next = keep
+                            o_last_n.next = rem - term <= width
+                            o_valid_n.next = True
+                    if piece == parts - 1:
+                        piece_n.next = 0
+                    else:
+                        piece_n.next = piece + 1
+                else:
+                    step = 0
+                    if ended and avail < rem and not abort:
+                        abort_n.next = True
+        elif kind == Kind.LOOP:
+            lengths.next = True
+            if length > maximum:
+                abort_n.next = True
+                pc_n.next = target
+            elif length == 0:
+                pc_n.next = target
+            else:
+                count.next = length
+                load_loop.next = True
+                pc_n.next = pc + 1
+        elif kind == Kind.NEXT:
+            if channel_ready and not o_valid:
+                next_element.next = True
+                if more:
+                    pc_n.next = target
+                else:
+                    pc_n.next = pc + 1
+        elif not (ended and avail == 0):
+            step = width
+            if avail < width:
+                step = int(avail)
+            take.next = step
+            if int(trail) + step > 7:  # int(): unsigned sums keep the operands' width in VHDL
+                trail_n.next = 7
+            else:
+                trail_n.next = int(trail) + step
+            step = 0
+        elif msg_ready and not o_valid:
+            finished.next = True
+            release.next = True
+            pc_n.next = 0
+            abort_n.next = False
+            trail_n.next = 0
+        shifted = intbv(0)[8 * width + 32 :]
+        shifted[:] = concat(data, last4) >> (8 * step)
+        last4_n.next = shifted[32:]
+        if kind == Kind.END:
+            gap_n.next = start_gap
+        else:
+            gap_n.next = (int(gap) + 8 - step) % 8
+
+    @always_seq(clk.posedge, reset=rst)
+    def registers() -> None:
+        pc.next = pc_n
+        chunk.next = chunk_n
+        entered.next = entered_n
+        rem.next = rem_n
+        piece.next = piece_n
+        gap.next = gap_n
+        last4.next = last4_n
+        abort.next = abort_n
+        trail.next = trail_n
+        o_data.next = o_data_n
+        o_keep.next = o_keep_n
+        o_last.next = o_last_n
+        o_valid.next = o_valid_n
+        o_stream.next = o_stream_n
+        if finished and failed:
+            errors.next = errors + 1
+
+    allowed = 3 if cdr else 0
+
+    @always_comb
+    def verdict() -> None:
+        trailing = trail > (gap & allowed)
+        failed.next = abort or trailing or header != CDR_ENCAPSULATION
+
+    @always_comb
+    def message_handshake() -> None:
+        msg_valid.next = pc == end_pc and ended and avail == 0 and not o_valid
+        msg_error.next = failed
+        error_count.next = errors
+
+    blocks = [window, zero_on_abort, control, registers, verdict, message_handshake]
+    if len(readies) > 1:
+        blocks.append(select_bit(bits_of(readies), t.channel, pc, channel_ready))
+    blocks.append(field_captures(plan, ports, clk, rst, capture, rc, data, header))
+    blocks.append(length_registers(plan, ports, clk, rst, lengths, pc, count))
+    blocks.append(
+        loop_counters(
+            plan, clk, rst, pc, count, load_loop, next_element, loop_counts, loop_more, more
+        )
+    )
+    blocks.append(element_handshakes(plan, ports, pc, o_valid, loop_counts))
+    blocks.append(stream_outputs(plan, ports, o_data, o_keep, o_last, o_valid, o_stream, o_ready))
+    return blocks

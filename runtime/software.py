@@ -18,14 +18,14 @@ as superseded.
 
 from __future__ import annotations
 
-import importlib.util
-import sys
 from collections.abc import Callable, Sequence
-from pathlib import Path
 from typing import Any
 
 from rfc.errors import RfcError
 from rfc.ir.model import AcceleratorType, Block
+from rfc.spec.python_sources import function_in
+
+_ROLE = "ROS-SW accelerator"
 
 Function = Callable[..., Any]
 
@@ -39,7 +39,9 @@ def load_function(accelerator: AcceleratorType) -> Function:
     if accelerator.reference_function is not None:
         return accelerator.reference_function
     if accelerator.reference is not None:
-        return _function_in(accelerator.reference.file, accelerator.reference.name, accelerator)
+        return function_in(
+            accelerator.reference.file, accelerator.reference.name, accelerator, _ROLE
+        )
     python = next((p for p in accelerator.sources if p.suffix == ".py"), None)
     if python is None:
         raise RfcError(
@@ -48,44 +50,7 @@ def load_function(accelerator: AcceleratorType) -> Function:
             location=accelerator.location,
             hint="name its Python model with 'reference: file.py:function'",
         )
-    return _function_in(python, accelerator.top or accelerator.name, accelerator)
-
-
-def _function_in(path: Path, name: str, accelerator: AcceleratorType) -> Function:
-    module = _import_file(path, accelerator)
-    function = getattr(module, name, None)
-    if not callable(function):
-        raise RfcError(
-            f"'{path.name}' defines no function '{name}' for ROS-SW accelerator "
-            f"'{accelerator.name}'",
-            location=accelerator.location,
-            hint="name it with 'top:' or 'reference: file.py:function'",
-        )
-    return function
-
-
-def _import_file(path: Path, accelerator: AcceleratorType) -> Any:
-    name = f"_rfc_software_{abs(hash(str(path.resolve())))}"
-    if name in sys.modules:
-        return sys.modules[name]
-    spec = importlib.util.spec_from_file_location(name, path)
-    if spec is None or spec.loader is None:
-        raise RfcError(f"cannot load '{path}'", location=accelerator.location)
-    module = importlib.util.module_from_spec(spec)
-    directory = str(path.resolve().parent)
-    sys.path.insert(0, directory)
-    try:
-        spec.loader.exec_module(module)
-    except Exception as exc:  # the user's module failed to import: report it, no traceback
-        raise RfcError(
-            f"importing '{path.name}' for accelerator '{accelerator.name}' raised "
-            f"{type(exc).__name__}: {exc}",
-            location=accelerator.location,
-        ) from None
-    finally:
-        sys.path.remove(directory)
-    sys.modules[name] = module
-    return module
+    return function_in(python, accelerator.top or accelerator.name, accelerator, _ROLE)
 
 
 class SoftwareAccelerator:

@@ -10,12 +10,13 @@ from __future__ import annotations
 
 from rfc.ir.model import Design
 from rfc.lower.artifacts import Artifact, BuildOptions, Lowering
+from rfc.lower.hardware import hardware
 from rfc.lower.model import holistic_model
 from rfc.lower.report import build_report
 from rfc.lower.ros2_node import ros2_node
 
 #: Every lowering, in the order their artifacts are listed in the report.
-LOWERINGS: tuple[Lowering, ...] = (holistic_model, ros2_node)
+LOWERINGS: tuple[Lowering, ...] = (holistic_model, hardware, ros2_node)
 
 
 def lower(design: Design, options: BuildOptions, spec_text: str) -> tuple[Artifact, ...]:

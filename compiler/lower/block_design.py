@@ -28,7 +28,8 @@ class BlockDesign:
     """The generated part of the block design.
 
     Attributes:
-        cells: ``(cell, module)`` for every generated entity instance.
+        cells: ``(cell, module)`` for every generated entity instance, ``(cell, module, vlnv)``
+            for a vendor IP core.
         nets: ``(net, pins)``, pins as ``cell/pin``; exactly one of them drives the net.
         constants: ``(cell, width, value)`` of the xlconstant cells; each drives ``cell/dout``.
         clock_pins: Pins on the system clock.
@@ -37,7 +38,7 @@ class BlockDesign:
         dma_s2mm: The interface that feeds the DMA's S2MM stream.
     """
 
-    cells: tuple[tuple[str, str], ...]
+    cells: tuple[tuple[str, ...], ...]
     nets: tuple[tuple[str, tuple[str, ...]], ...]
     constants: tuple[tuple[str, int, int], ...]
     clock_pins: tuple[str, ...]
@@ -54,12 +55,12 @@ def block_design(netlist: Netlist) -> BlockDesign:
             interface: it cannot be drawn in IP Integrator.
     """
     netlist.check()
-    cells: list[tuple[str, str]] = []
+    cells: list[tuple[str, ...]] = []
     pins: dict[str, list[str]] = defaultdict(list)
     constants: list[tuple[str, int, int]] = []
     streams: dict[str, set[str]] = {MM2S: set(), S2MM: set()}
     for label, entity, connections in netlist.instances():
-        cells.append((label, entity.name))
+        cells.append((label, entity.name, entity.vlnv) if entity.vlnv else (label, entity.name))
         for port, net in connections.items():
             if net is None:
                 continue

@@ -43,10 +43,19 @@ class PortDecl:
 
 @dataclass(frozen=True)
 class EntityDecl:
-    """The interface of an entity the netlist instantiates (or the netlist's own)."""
+    """The interface of an entity the netlist instantiates (or the netlist's own).
+
+    Attributes:
+        name: Entity name.
+        ports: Its ports.
+        vlnv: For a vendor IP core (a Vitis HLS export): its IP identifier. Its VHDL is not
+            generated, so it is instantiated through a component declaration — the netlist
+            analyses without it — and the block design makes it an IP cell.
+    """
 
     name: str
     ports: tuple[PortDecl, ...]
+    vlnv: str | None = None
 
     def port(self, name: str) -> PortDecl:
         """The port called `name`."""
@@ -240,12 +249,18 @@ class Netlist:
         for name, (bits, wire) in self._signals.items():
             if name not in ports:
                 lines.append(f"  signal {name} : {_kind(bits, wire)};")
+        cores = {i.entity.name: i.entity for i in self._instances if i.entity.vlnv}
+        for core in cores.values():
+            lines += [f"  component {core.name} is", *_port_clause(core.ports), "  end component;"]
         lines.append("begin")
         for target, source in self._assignments:
             lines.append(f"  {target.text} <= {source.text};")
         for instance in self._instances:
             lines.append("")
-            lines.append(f"  {instance.label} : entity work.{instance.entity.name}")
+            unit = instance.entity.name
+            lines.append(
+                f"  {instance.label} : {unit if instance.entity.vlnv else 'entity work.' + unit}"
+            )
             if instance.generics:
                 maps = ", ".join(f"{k} => {v}" for k, v in instance.generics.items())
                 lines.append(f"    generic map ({maps})")

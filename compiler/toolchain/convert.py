@@ -39,7 +39,9 @@ def convert_myhdl(
 ) -> list[Path]:
     """Convert an elaborated MyHDL block instance to VHDL (and Verilog).
 
-    Ports become `std_logic`/`std_logic_vector`, the way other VHDL instantiates them.
+    Ports become `std_logic`/`std_logic_vector`, the way other VHDL instantiates them. Every
+    signal gets its MyHDL initial value (FPGA registers power up with it), so no output is
+    undefined before the first reset edge.
 
     Args:
         instance: The result of calling a ``@block`` function with its signals.
@@ -59,6 +61,7 @@ def convert_myhdl(
             path=str(directory),
             name=name,
             std_logic_ports=True,
+            initial_values=True,
             no_myhdl_header=True,
             header=banner,
         )
@@ -69,6 +72,7 @@ def convert_myhdl(
                 path=str(directory),
                 name=name,
                 testbench=False,
+                initial_values=True,
                 no_myhdl_header=True,
                 header=banner.replace("--", "//"),
             )

@@ -93,8 +93,12 @@ connect_bd_net -net rst [get_bd_pins rst_ps7/peripheral_reset] \
 
 # --- the generated cells and every connection between them ------------------------------
 foreach cell $rfc(cells) {
-    lassign $cell name module
-    create_bd_cell -type module -reference $module $name
+    lassign $cell name module vlnv
+    if {$vlnv ne ""} {
+        create_bd_cell -type ip -vlnv $vlnv $name
+    } else {
+        create_bd_cell -type module -reference $module $name
+    }
 }
 foreach constant $rfc(constants) {
     lassign $constant name width value

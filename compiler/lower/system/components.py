@@ -1,0 +1,142 @@
+"""The entities of the logic that rfc generates itself, converted from MyHDL to VHDL.
+
+Each is a `Component`: its interface as the netlist sees it and its VHDL files. The converters
+come from `rfc.lib.converters`, the manager from `rfc.lib.manager`, the ap_ctrl wrapper of HLS
+cores from `rfc.lib.hls`, the handshake fork of fan-out from `rfc.lib.fork`.
+"""
+
+from __future__ import annotations
+
+import warnings
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from myhdl import ToVHDLWarning
+
+from rfc.ir.infrastructure import Converter
+from rfc.lib.converters.build import generate
+from rfc.lib.converters.limits import Limits
+from rfc.lib.converters.plan import plan
+from rfc.lib.converters.ports import Direction, Port, PortRole, Side
+from rfc.lib.converters.toplevel import elaboration, port_signals, top_block
+from rfc.lib.fork import fork_body
+from rfc.lib.hls.adapter import AdapterShape, hls_adapter
+from rfc.lib.manager.entity import ManagerShape, manager_ports, manager_top
+from rfc.lower.netlist import EntityDecl
+from rfc.lower.system.interfaces import declaration
+from rfc.toolchain import convert_myhdl
+
+
+@dataclass(frozen=True)
+class Component:
+    """An entity the top level instantiates.
+
+    Attributes:
+        entity: Its interface.
+        files: Its VHDL files in compile order (MyHDL's package first, where it needs one).
+    """
+
+    entity: EntityDecl
+    files: tuple[Path, ...] = ()
+
+
+def entity_of(name: str, ports: Sequence[Port]) -> EntityDecl:
+    """The netlist's view of an entity declared with converter-convention ports."""
+    return EntityDecl(name, tuple(declaration(port) for port in ports))
+
+
+def convert(
+    name: str,
+    ports: Sequence[Port],
+    body: Callable[..., Any],
+    directory: Path,
+    what: str,
+    **parameters: Any,
+) -> Component:
+    """Elaborate ``body(**parameters, **ports)`` as entity `name` and convert it to VHDL."""
+    with elaboration(), warnings.catch_warnings():
+        # MyHDL notes every unread or constant internal signal; generated designs have many.
+        warnings.simplefilter("ignore", ToVHDLWarning)
+        warnings.simplefilter("ignore", UserWarning)
+        top = top_block(name, [p.name for p in ports], body, **parameters)
+        files = convert_myhdl(
+            top(**port_signals(ports)), name, directory, verilog=False, header=f"{name}: {what}"
+        )
+    return Component(entity_of(name, ports), tuple(files))
+
+
+def converter_component(
+    converter: Converter, side: Side, directory: Path, name: str, limits: Limits
+) -> Component:
+    """A subscriber or publisher converter of the model."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)
+        generated = generate(
+            plan(converter.layout, converter.bus_width, limits), side, directory, name
+        )
+    return Component(entity_of(name, generated.ports), tuple(generated.vhdl))
+
+
+def manager_component(shape: ManagerShape, directory: Path, name: str) -> Component:
+    """The manager: PS→PL demultiplexer and PL→PS multiplexer with its scheduler."""
+    ports = manager_ports(shape)
+    with elaboration(), warnings.catch_warnings():
+        warnings.simplefilter("ignore", ToVHDLWarning)
+        warnings.simplefilter("ignore", UserWarning)
+        files = convert_myhdl(
+            manager_top(shape, name)(**port_signals(ports)),
+            name,
+            directory,
+            verilog=False,
+            header=f"{name}: the DMA manager of the system (rfc)",
+        )
+    return Component(entity_of(name, ports), tuple(files))
+
+
+def fork_component(consumers: int, directory: Path, name: str) -> Component:
+    """A handshake fork to `consumers` consumers."""
+    ports = [
+        Port("clk", 1, Direction.IN, PortRole.CLOCK),
+        Port("rst", 1, Direction.IN, PortRole.RESET),
+        Port("s_valid", 1, Direction.IN, PortRole.VALID),
+        Port("s_ready", 1, Direction.OUT, PortRole.READY),
+    ]
+    for index in range(consumers):
+        ports += [
+            Port(f"m{index}_valid", 1, Direction.OUT, PortRole.VALID),
+            Port(f"m{index}_ready", 1, Direction.IN, PortRole.READY),
+        ]
+    what = f"handshake fork to {consumers} (rfc)"
+    return convert(name, ports, fork_body, directory, what, consumers=consumers)
+
+
+def adapter_component(shape: AdapterShape, directory: Path, name: str) -> Component:
+    """The ap_ctrl wrapper of one HLS core."""
+    into, out = Direction.IN, Direction.OUT
+    ports = [
+        Port("clk", 1, into, PortRole.CLOCK),
+        Port("rst", 1, into, PortRole.RESET),
+        Port("ap_start", 1, out, PortRole.VALID),
+        Port("ap_done", 1, into, PortRole.VALID),
+        Port("ap_idle", 1, into, PortRole.VALID),
+        Port("ap_ready", 1, into, PortRole.READY),
+    ]
+    for port in shape.inputs:
+        ports += [
+            Port(f"{port}_valid", 1, into, PortRole.VALID),
+            Port(f"{port}_ready", 1, out, PortRole.READY),
+        ]
+    for port, fields in shape.outputs:
+        for field, core, bits in fields:
+            ports += [
+                Port(core, bits, into, PortRole.FIELD),
+                Port(f"{core}_ap_vld", 1, into, PortRole.VALID),
+                Port(field, bits, out, PortRole.FIELD),
+            ]
+        ports += [
+            Port(f"{port}_valid", 1, out, PortRole.VALID),
+            Port(f"{port}_ready", 1, into, PortRole.READY),
+        ]
+    return convert(name, ports, hls_adapter, directory, "ap_ctrl wrapper (rfc)", shape=shape)

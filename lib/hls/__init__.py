@@ -1,0 +1,1 @@
+"""Blocks that connect Vitis HLS cores to rfc's message handshakes."""

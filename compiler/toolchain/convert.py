@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 import threading
 from pathlib import Path
 from typing import Any
@@ -66,6 +67,7 @@ def convert_myhdl(
             header=banner,
         )
         files = [directory / MYHDL_PACKAGE, directory / f"{name}.vhd"]
+        _drop_undeclared_port_copies(files[1])
         if verilog:
             instance.convert(
                 hdl="Verilog",
@@ -78,3 +80,20 @@ def convert_myhdl(
             )
             files.append(directory / f"{name}.v")
     return files
+
+
+_PORT_COPY = re.compile(r"^(\w+)_num <= (?:unsigned|signed)\(\1\);\n", re.M)
+
+
+def _drop_undeclared_port_copies(path: Path) -> None:
+    """Remove MyHDL's copies of unread vector inputs into signals it never declares.
+
+    With ``std_logic_ports`` myhdl 0.11.52 converts each vector input ``p`` to ``p_num`` inside
+    the architecture, but declares ``p_num`` only when something reads it: an input the design
+    ignores (a field an accelerator does not use) leaves an assignment GHDL rejects.
+    """
+    text = path.read_text()
+    declared = set(re.findall(r"^\s*signal (\w+)\s*:", text, re.M))
+    kept = _PORT_COPY.sub(lambda m: m.group(0) if f"{m.group(1)}_num" in declared else "", text)
+    if kept != text:
+        path.write_text(kept)

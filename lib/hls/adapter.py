@@ -39,10 +39,17 @@ def hls_adapter(shape: AdapterShape, **ports: Any) -> Any:
     parts = []
     inputs = max(len(shape.inputs), 1)
     outputs = max(len(shape.outputs), 1)
-    in_valid = _vector([ports[f"{p}_valid"] for p in shape.inputs], parts)
+    # MyHDL needs blocks instantiated in the block's own body: no helper may call `follow`.
+    valids = [ports[f"{p}_valid"] for p in shape.inputs]
+    in_valid = _vector(valids)
+    if len(valids) == 1:
+        parts.append(follow(valids[0], in_valid))
     in_ready = Signal(intbv(0)[inputs:])
     out_valid = Signal(intbv(0)[outputs:])
-    out_ready = _vector([ports[f"{p}_ready"] for p, _ in shape.outputs], parts)
+    readies = [ports[f"{p}_ready"] for p, _ in shape.outputs]
+    out_ready = _vector(readies)
+    if len(readies) == 1:
+        parts.append(follow(readies[0], out_ready))
     parts.append(
         ap_control(
             ports["clk"], ports["rst"], in_valid, in_ready, ports["ap_start"], ports["ap_done"],
@@ -59,14 +66,11 @@ def hls_adapter(shape: AdapterShape, **ports: Any) -> Any:
     return parts
 
 
-def _vector(signals: Sequence[Any], parts: list[Any]) -> Any:
-    """The signals as one vector, the first in bit 0 (a constant 1 when there are none)."""
+def _vector(signals: Sequence[Any]) -> Any:
+    """The signals as one vector, the first in bit 0; for one or none, a signal to drive."""
     if len(signals) > 1:
         return ConcatSignal(*reversed(signals))
-    vector = Signal(intbv(1)[1:])
-    if signals:
-        parts.append(follow(signals[0], vector))
-    return vector
+    return Signal(intbv(1)[1:])
 
 
 @block
@@ -106,7 +110,9 @@ def ap_control(
                 out_valid.next = everyone_out
                 phase.next = phase_t.OFFERING
         else:
-            pending = out_valid & ~out_ready
+            pending = intbv(0)[len(out_valid) :]
+            for i in range(len(out_valid)):
+                pending[i] = out_valid[i] and not out_ready[i]
             out_valid.next = pending
             if pending == 0:
                 phase.next = phase_t.WAIT_INPUTS

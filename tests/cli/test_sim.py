@@ -35,7 +35,7 @@ def test_mixed_system_replays_a_real_bag_through_ghdl_as_in_software(tmp_path):
     (tmp_path / "sw").mkdir()
     hardware = system_copy(tmp_path / "hw", "pose_mixed.yaml")
     software = system_copy(tmp_path / "sw", "pose_mixed.yaml", TO_SOFTWARE)
-    account = sim(hardware, bag, tmp_path / "hw.mcap", *ECHO, "--drain-cycles", "300")
+    account = sim(hardware, bag, tmp_path / "hw.mcap", "--drain-cycles", "300")
     assert account["received"] == {"/amcl_pose": 135}
     assert account["to_logic"] == {"Pose_sub": 135, "Pass2_in0_sub": 135}
     assert account["from_logic"] == {"Pass_out0_pub": 135, "Pose_pub": 135}
@@ -198,16 +198,19 @@ def test_myhdl_backend_needs_a_myhdl_design(tmp_path, small_bag):
     assert not (tmp_path / "o.mcap").exists()
 
 
-def test_without_the_whole_system_generation_hardware_cannot_be_simulated(tmp_path, small_bag):
-    spec = system_copy(tmp_path, "pose_mixed.yaml")
-    result = run_rfc("sim", spec, "--bag", small_bag, "--out", tmp_path / "o.mcap", cwd=ROOT)
-    try:
-        import rfc.lower.hardware  # noqa: F401
-    except ImportError:
-        assert result.returncode == 1
-        assert "needs the whole-system hardware generation" in result.stderr
-    else:
-        pytest.skip("rfc.lower.hardware exists: the default top provider is tested with it")
+def test_a_logic_with_an_hls_core_cannot_be_simulated_and_says_why(tmp_path):
+    bag = tmp_path / "q.mcap"
+    types = message_types("ros2")
+    quaternion = types.build("geometry_msgs/msg/Quaternion", {"w": 1.0})
+    data = types.serialize(quaternion, "geometry_msgs/msg/Quaternion")
+    write_bag(bag, types, {"/imu/orientation": "geometry_msgs/msg/Quaternion"},
+              [("/imu/orientation", 1, data)])  # fmt: skip
+    spec = ROOT / "examples/rotation_converter/RotationConverterNode.yaml"
+    result = run_rfc("sim", spec, "--bag", bag, "--out", tmp_path / "o.mcap", cwd=ROOT)
+    assert result.returncode == 1
+    assert "HLS cores (QuaternionToEuler)" in result.stderr
+    assert "Traceback" not in result.stderr
+    assert not (tmp_path / "o.mcap").exists()
 
 
 def test_a_software_function_failing_in_the_simulator_is_one_error(tmp_path, small_bag):

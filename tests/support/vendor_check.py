@@ -106,6 +106,18 @@ def entity_ports(files: list[Path]) -> dict[str, dict[str, str]]:
     return entities
 
 
+_COMPONENT = re.compile(r"^\s*component\s+(\w+)\s+is(.*?)end\s+component", re.M | re.I | re.S)
+
+
+def component_ports(files: list[Path]) -> dict[str, dict[str, str]]:
+    """Component name -> {port: direction}: the vendor cores the top level declares."""
+    components = {}
+    for path in files:
+        for name, body in _COMPONENT.findall(path.read_text()):
+            components[name] = {p: d.lower() for p, d, _ in _PORT.findall(body)}
+    return components
+
+
 def check_vivado(record: Record) -> dict[str, dict[str, str]]:
     """Check a recorded Vivado build; return the generated cells' pins for further checks."""
     (added,) = record.of("add_files")[:1]
@@ -117,7 +129,15 @@ def check_vivado(record: Record) -> dict[str, dict[str, str]]:
     generated: dict[str, dict[str, str]] = {}
     for kind, (what,), (name,) in record.of("create_bd_cell"):
         assert name not in cells, f"cell {name} created twice"
-        if kind[0] == "ip":
+        if kind[0] == "ip" and what.startswith("xilinx.com:hls:"):
+            # an HLS core: its ports are the ones the top level declares for it (the contract
+            # of rfc.lower.hls_signature with Vitis HLS)
+            core = what.split(":")[2]
+            cores = component_ports([f for f in files if f.suffix == ".vhd"])
+            assert core in cores, f"HLS core {core} is not declared by the generated VHDL"
+            generated[name] = cores[core]
+            cells[name] = (cores[core], set())
+        elif kind[0] == "ip":
             assert what in _IP_PINS, f"unknown IP {what}"
             cells[name] = _IP_PINS[what]
         else:

@@ -139,8 +139,13 @@ def _check_signature(accelerator: AcceleratorType, function: Any, expected: list
         parameters = inspect.signature(plain).parameters
     except (TypeError, ValueError):
         return
-    required = [n for n, p in parameters.items() if p.default is inspect.Parameter.empty]
-    missing = [n for n in expected if n not in parameters]
+    keywords = any(p.kind is inspect.Parameter.VAR_KEYWORD for p in parameters.values())
+    required = [
+        n
+        for n, p in parameters.items()
+        if p.default is inspect.Parameter.empty and p.kind is not inspect.Parameter.VAR_KEYWORD
+    ]
+    missing = [] if keywords else [n for n in expected if n not in parameters]
     extra = [n for n in required if n not in expected]
     if missing or extra:
         problems = []
@@ -306,7 +311,7 @@ def _check_arguments(
             location=arguments[0].location if arguments else accelerator.location,
             hint=_ARGUMENT_ORDER,
         )
-    for argument, (port, pin), want in zip(arguments, fields, strict=True):
+    for argument, (port, pin), want in zip(arguments, fields, expected, strict=True):
         output = port.direction.value == "out"
         if argument.output != output or argument.bits != pin.port.bits:
             kind = "output" if argument.output else "input"

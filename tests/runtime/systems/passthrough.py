@@ -1,12 +1,16 @@
 """Software models of the test systems' accelerators (ROS-SW calling convention).
 
-`identity` is the reference model of the hardware pass-through accelerators (the echo fixture
-top-level implements them in the logic); `clear_covariance` is a software-only accelerator.
+`pass_through` (rfc's generic block) is the hardware pass-through accelerator and `identity`
+its reference model; `clear_covariance` is a software-only accelerator.
 """
 
 from dataclasses import replace
 
 import numpy as np
+
+from rfc.lib.passthrough import pass_through
+
+__all__ = ["clear_covariance", "identity", "pass_through"]
 
 
 def identity(message):

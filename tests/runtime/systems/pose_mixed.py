@@ -11,6 +11,7 @@ PassPose = rfc.external_accelerator(
     "PassPose",
     kind=PASS_KIND,
     sources="./passthrough.py",
+    top="pass_through",
     inputs=POSE,
     outputs=POSE,
     reference=identity,

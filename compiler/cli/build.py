@@ -39,6 +39,12 @@ def build(
     emit_ir: Annotated[
         bool, typer.Option("--emit-ir", help="Write the holistic model to DIR/model.yaml.")
     ] = False,
+    estimate: Annotated[
+        bool,
+        typer.Option(
+            "--estimate", help="Estimate the logic's LUT/FF with Yosys (xc7) for report.md."
+        ),
+    ] = False,
     dump_ir_after: Annotated[
         list[str] | None,
         typer.Option(
@@ -70,7 +76,8 @@ def build(
             sys.stdout.write(f"# IR after {name}\n{format_ir(design)}")
 
     design = compile_spec(str(spec), after=dump)
-    artifacts = lower(design, BuildOptions(emit_ir=emit_ir), spec.read_text(encoding="utf-8"))
+    options = BuildOptions(emit_ir=emit_ir, estimate=estimate)
+    artifacts = lower(design, options, spec.read_text(encoding="utf-8"))
     write_artifacts(artifacts, output, str(output))
     names = ", ".join(a.path for a in artifacts)
     print(f"built {design.project.name} into {output}: {names}", file=sys.stderr)

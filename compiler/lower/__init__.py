@@ -1,6 +1,7 @@
 """Lowering: the holistic model becomes artifacts, written to the output directory at once.
 
-A lowering is a function ``(design, options) -> artifacts``. To add an artifact kind (VHDL,
+A lowering is a function ``(design, options) -> artifacts`` (it may also yield
+`ReportSection`s: figures for report.md). To add an artifact kind (VHDL,
 tcl, the runtime's configuration...), write one such function in its own module and add it to
 `LOWERINGS`. `lower` runs them all in memory, then the report counts their lines; only then
 does `rfc.lower.writer` put anything on disk, so an error leaves nothing half-written.
@@ -9,7 +10,7 @@ does `rfc.lower.writer` put anything on disk, so an error leaves nothing half-wr
 from __future__ import annotations
 
 from rfc.ir.model import Design
-from rfc.lower.artifacts import Artifact, BuildOptions, Lowering
+from rfc.lower.artifacts import Artifact, BuildOptions, Lowering, ReportSection
 from rfc.lower.hardware import hardware
 from rfc.lower.model import holistic_model
 from rfc.lower.report import build_report
@@ -27,5 +28,7 @@ def lower(design: Design, options: BuildOptions, spec_text: str) -> tuple[Artifa
         options: What to build.
         spec_text: The spec's text, for the report's line count.
     """
-    artifacts = tuple(a for lowering in LOWERINGS for a in lowering(design, options))
-    return (*artifacts, build_report(design, spec_text, artifacts))
+    produced = [item for lowering in LOWERINGS for item in lowering(design, options)]
+    artifacts = tuple(a for a in produced if isinstance(a, Artifact))
+    sections = tuple(s for s in produced if isinstance(s, ReportSection))
+    return (*artifacts, build_report(design, spec_text, artifacts, sections))

@@ -14,6 +14,8 @@ class BuildOptions:
 
     emit_ir: bool = False
     """Write the holistic model (``model.yaml``)."""
+    estimate: bool = False
+    """Estimate the logic's LUT/FF with Yosys for the report."""
 
 
 @dataclass(frozen=True)
@@ -36,7 +38,20 @@ class Artifact:
         return count_lines(self.text)
 
 
-Lowering = Callable[[Design, BuildOptions], Iterable[Artifact]]
+@dataclass(frozen=True)
+class ReportSection:
+    """A section a lowering adds to report.md (measured figures, not a file of its own).
+
+    Attributes:
+        title: The section's heading.
+        lines: Its Markdown lines.
+    """
+
+    title: str
+    lines: tuple[str, ...]
+
+
+Lowering = Callable[[Design, BuildOptions], Iterable[Artifact | ReportSection]]
 
 
 def count_lines(text: str) -> int:

@@ -16,17 +16,18 @@ from pathlib import Path
 
 from rfc.errors import RfcError
 from rfc.ir.model import Design
-from rfc.lower.artifacts import Artifact, BuildOptions
+from rfc.lower.artifacts import Artifact, BuildOptions, ReportSection
 from rfc.lower.block_design import block_design, tcl_list, tcl_word
 from rfc.lower.system.accelerators import HlsCore
 from rfc.lower.system.generate import SystemHardware, generate_system
+from rfc.lower.system.measures import latency_section, resources_section
 from rfc.lower.vivado import VivadoProject, vivado_artifacts
 
 #: Where the generated VHDL goes in the build directory.
 HW = "hw"
 
 
-def hardware(design: Design, options: BuildOptions) -> Iterable[Artifact]:
+def hardware(design: Design, options: BuildOptions) -> Iterable[Artifact | ReportSection]:
     """Every hardware artifact of a design whose logic has anything in it."""
     infrastructure = design.infrastructure
     assert infrastructure is not None
@@ -35,6 +36,9 @@ def hardware(design: Design, options: BuildOptions) -> Iterable[Artifact]:
     with tempfile.TemporaryDirectory(prefix="rfc-hw-") as scratch:
         system = generate_system(design, Path(scratch))
         yield from _vhdl(system)
+        yield latency_section(design, system)
+        if options.estimate:
+            yield resources_section(system)
     hdl_files = [f"{HW}/{f.name}" for f in system.files]
     project = VivadoProject(
         name=design.project.name,

@@ -12,7 +12,7 @@ from collections.abc import Sequence
 from rfc import __version__
 from rfc.ir.infrastructure import Infrastructure
 from rfc.ir.model import Design
-from rfc.lower.artifacts import Artifact, count_lines
+from rfc.lower.artifacts import Artifact, ReportSection, count_lines
 
 REPORT_FILE = "report.md"
 
@@ -27,8 +27,13 @@ def markdown_table(
     return lines
 
 
-def build_report(design: Design, spec_text: str, artifacts: Sequence[Artifact]) -> Artifact:
-    """Write the report about a build's artifacts."""
+def build_report(
+    design: Design,
+    spec_text: str,
+    artifacts: Sequence[Artifact],
+    sections: Sequence[ReportSection] = (),
+) -> Artifact:
+    """Write the report about a build's artifacts, with the lowerings' own sections."""
     project = design.project
     lines = [
         f"# {project.name}: build report",
@@ -43,6 +48,8 @@ def build_report(design: Design, spec_text: str, artifacts: Sequence[Artifact]) 
     ]
     if design.infrastructure is not None:
         lines += ["", *_system(design.infrastructure)]
+    for section in sections:
+        lines += ["", f"## {section.title}", "", *section.lines]
     return Artifact(REPORT_FILE, "report", "\n".join(lines) + "\n")
 
 

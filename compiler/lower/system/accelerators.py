@@ -12,7 +12,7 @@ outputs. Cell ports named ``clk``/``ap_clk`` go on the clock, ``rst``/``ap_rst``
 from __future__ import annotations
 
 import inspect
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -27,6 +27,7 @@ from rfc.lower.hls_signature import HlsArgument, read_top_function
 from rfc.lower.netlist import EntityDecl, Mode, PortDecl
 from rfc.lower.system.components import Component, adapter_component, convert
 from rfc.lower.system.interfaces import MESSAGE, Pin, accelerator_pins
+from rfc.lower.system.latency import accelerator_latency
 from rfc.spec.python_sources import function_in
 from rfc.toolchain import GhdlError, read_entities
 
@@ -66,6 +67,8 @@ class AcceleratorHardware:
         wires: ``(source suffix, output, destination suffix, input)`` between its cells.
         pins: ``(accelerator port, converter-side name)`` → ``(suffix, cell port)``.
         hls: The HLS core, for HLS accelerators.
+        latency: Measures the cycles from inputs to outputs (MyHDL accelerators, which rfc
+            can simulate by itself), or None.
     """
 
     components: tuple[Component, ...]
@@ -73,6 +76,7 @@ class AcceleratorHardware:
     wires: tuple[tuple[str, str, str, str], ...] = ()
     pins: Mapping[tuple[str, str], tuple[str, str]] = field(default_factory=dict)
     hls: HlsCore | None = None
+    latency: Callable[[], int | None] | None = field(default=None, compare=False)
 
 
 def accelerator_hardware(
@@ -121,7 +125,19 @@ def _myhdl(
     name = entity_name(accelerator)
     signals = [_signal_port(d) for d in declared]
     component = convert(name, signals, function, directory, f"MyHDL accelerator {accelerator.name}")
-    return AcceleratorHardware((component,), (("", component.entity),), pins=_own_pins(ports))
+    inputs = [
+        p
+        for p in ports
+        if any(pin.port.mode is Mode.IN and pin.role_name == f"{MESSAGE}_valid" for pin in ports[p])
+    ]
+    outputs = [p for p in ports if p not in inputs]
+
+    def latency() -> int | None:
+        return accelerator_latency(function, signals, inputs, outputs)
+
+    return AcceleratorHardware(
+        (component,), (("", component.entity),), pins=_own_pins(ports), latency=latency
+    )
 
 
 def _block_function(accelerator: AcceleratorType) -> Any:

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import re
 from collections import defaultdict
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -50,6 +51,8 @@ class SystemHardware:
         bus_width: Bits of the DMA streams.
         hls: The HLS cores it instantiates (their VHDL comes from Vitis HLS, not from rfc).
         multichannel: Whether the DMA must be multichannel (the scheduler preempts).
+        accelerators: The hardware of each accelerator type in the logic, by type name.
+        limits: The maxima of strings and sequences the converters were built for.
     """
 
     top: str
@@ -58,6 +61,8 @@ class SystemHardware:
     bus_width: int
     hls: tuple[HlsCore, ...]
     multichannel: bool
+    accelerators: Mapping[str, AcceleratorHardware]
+    limits: Limits
 
     @property
     def sources(self) -> list[Path]:
@@ -189,6 +194,8 @@ def generate_system(
         bus_width=width,
         hls=tuple(h.hls for h in hardware_types.values() if h.hls is not None),
         multichannel=spec is not None and _preemptive(spec),
+        accelerators=hardware_types,
+        limits=limits,
     )
 
 

@@ -147,3 +147,31 @@ def test_strings_feeding_two_blocks_are_refused(tmp_path):
     message = refused(spec, tmp_path / "build")
     assert "cannot feed several blocks in the logic" in message
     assert "exclude the string or sequence fields" in message
+
+
+def test_the_report_gives_latencies_against_targets_and_estimated_resources(tmp_path):
+    # LRU: GHDL 2.0's synthesis crashes on the manager with PFP or LST (netlists-memories)
+    spec = write_spec(tmp_path, fan_out().replace("LST", "LRU"), pass__py=PASS_THROUGH)
+    result = run_rfc("build", spec, "-o", tmp_path / "build", "--estimate", cwd=ROOT)
+    assert result.returncode == 0, result.stderr
+    report = (tmp_path / "build/report.md").read_text()
+    rows = {
+        tuple(cell.strip(" `") for cell in line.split("|")[1:3]): line.split("|")[3:5]
+        for line in report.split("## Latencies")[1].split("## Resources")[0].splitlines()
+        if line.startswith("| ") and "---" not in line and "block" not in line
+    }
+    # Twist: 52 bytes of CDR frame on a 32-bit bus is 13 beats
+    assert [c.strip() for c in rows[("subscriber", "twist_sub")]] == ["15", "≤ 15"]
+    assert int(rows[("publisher", "first_pub")][0]) <= 16
+    assert rows[("accelerator", "first")][0].strip() == "1"
+    resources = report.split("## Resources")[1]
+    lut = int(next(line for line in resources.splitlines() if "fan_out_pl" in line).split("|")[2])
+    assert 100 < lut < 5000
+
+
+def test_estimating_a_logic_with_hls_cores_is_refused(tmp_path):
+    spec = ROOT / "examples/rotation_converter/RotationConverterNode.yaml"
+    result = run_rfc("build", spec, "-o", tmp_path / "b", "--estimate", cwd=ROOT)
+    assert result.returncode == 1
+    assert "its HLS cores come from Vitis HLS" in result.stderr
+    assert not (tmp_path / "b").exists()

@@ -1,0 +1,81 @@
+"""The report's figures of the logic: latencies (MyHDL simulation) and resources (Yosys).
+
+Targets are DESIGN.md §12's: a subscriber within ceil(bytes / bus bytes) + 2 cycles, a
+publisher within ceil(bytes / bus bytes) + 3, an accelerator within 120; the paper's quaternion
+system took 35, 373 and 28 cycles on its 8-bit bus.
+"""
+
+from __future__ import annotations
+
+import math
+
+from rfc.errors import RfcError
+from rfc.ir.model import BlockKind, Design
+from rfc.lower.artifacts import ReportSection
+from rfc.lower.report import markdown_table
+from rfc.lower.system.generate import SystemHardware
+from rfc.lower.system.latency import publisher_latency, subscriber_latency
+from rfc.toolchain import GhdlError, estimate_resources
+
+#: DESIGN.md §12: an accelerator's latency target in cycles.
+ACCELERATOR_TARGET = 120
+
+
+def latency_section(design: Design, system: SystemHardware) -> ReportSection:
+    """Cycles of each converter and MyHDL accelerator on one message, without backpressure."""
+    infrastructure = design.infrastructure
+    assert infrastructure is not None
+    rows: list[list[object]] = []
+    for converter in infrastructure.subscribers:
+        beats = math.ceil(converter.max_frame_bytes / (converter.bus_width // 8))
+        measured = subscriber_latency(converter, system.limits)
+        rows.append(["subscriber", f"`{converter.block}`", measured, f"≤ {beats + 2}"])
+    for block in design.blocks_of(BlockKind.ACCELERATOR):
+        hardware = system.accelerators.get(block.accelerator or "")
+        if hardware is None:
+            continue
+        measured = hardware.latency() if hardware.latency else None
+        rows.append(["accelerator", f"`{block.name}`", measured, f"≤ {ACCELERATOR_TARGET}"])
+    for converter in infrastructure.publishers:
+        beats = math.ceil(converter.max_frame_bytes / (converter.bus_width // 8))
+        measured = publisher_latency(converter, system.limits)
+        rows.append(["publisher", f"`{converter.block}`", measured, f"≤ {beats + 3}"])
+    lines = [
+        "Cycles for one message of default values with every ready high, measured in MyHDL's "
+        "simulator: subscriber from the first beat to its fields, accelerator from its inputs "
+        "to its outputs, publisher from its fields to the last beat (— where rfc cannot "
+        "simulate the block: VHDL and HLS accelerators). Targets: DESIGN.md §12 (frame size "
+        "is the largest frame for variable-size messages).",
+        "",
+        *markdown_table(["block", "name", "cycles", "target"], rows, (False, False, True, True)),
+    ]
+    return ReportSection("Latencies", tuple(lines))
+
+
+def resources_section(system: SystemHardware) -> ReportSection:
+    """LUT/FF/DSP/BRAM of the whole logic from GHDL synthesis and Yosys ``synth_xilinx``.
+
+    Raises:
+        RfcError: The logic holds HLS cores, whose netlists only Vitis HLS makes.
+    """
+    if system.hls:
+        raise RfcError(
+            "--estimate needs the whole logic in VHDL, but its HLS cores come from Vitis HLS",
+            hint="leave out --estimate; Vitis HLS reports the cores' resources",
+        )
+    try:
+        total = estimate_resources(system.files, system.top)
+    except GhdlError as exc:
+        raise RfcError(f"GHDL could not synthesize the logic for --estimate:\n{exc}") from None
+    rows = [[system.top, total.lut, total.ff, total.carry, total.lutram, total.bram, total.dsp]]
+    lines = [
+        "GHDL synthesis, then Yosys `synth_xilinx -family xc7 -noiopad` (an estimate; Vivado's "
+        "figures differ).",
+        "",
+        *markdown_table(
+            ["entity", "LUT", "FF", "CARRY4", "LUTRAM", "BRAM", "DSP"],
+            rows,
+            (False, True, True, True, True, True, True),
+        ),
+    ]
+    return ReportSection("Resources", tuple(lines))

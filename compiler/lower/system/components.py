@@ -114,6 +114,12 @@ def fork_component(consumers: int, directory: Path, name: str) -> Component:
 
 def adapter_component(shape: AdapterShape, directory: Path, name: str) -> Component:
     """The ap_ctrl wrapper of one HLS core."""
+    ports = adapter_ports(shape)
+    return convert(name, ports, hls_adapter, directory, "ap_ctrl wrapper (rfc)", shape=shape)
+
+
+def adapter_ports(shape: AdapterShape) -> list[Port]:
+    """The ap_ctrl wrapper's ports, in declaration order."""
     into, out = Direction.IN, Direction.OUT
     ports = [
         Port("clk", 1, into, PortRole.CLOCK),
@@ -139,4 +145,4 @@ def adapter_component(shape: AdapterShape, directory: Path, name: str) -> Compon
             Port(f"{port}_valid", 1, out, PortRole.VALID),
             Port(f"{port}_ready", 1, into, PortRole.READY),
         ]
-    return convert(name, ports, hls_adapter, directory, "ap_ctrl wrapper (rfc)", shape=shape)
+    return ports

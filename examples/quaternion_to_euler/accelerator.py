@@ -13,8 +13,8 @@ from __future__ import annotations
 from typing import Any
 
 from myhdl import block
-
 from quat_to_euler import quat_to_euler, reference
+
 from rfc.lib.fixed import bits_to_float, float_to_bits
 from rfc.messages.rosbags_adapter import message_types
 

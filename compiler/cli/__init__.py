@@ -12,7 +12,10 @@ import typer
 from rich.console import Console
 
 from rfc import __version__
+from rfc.cli.build import build_app
 from rfc.cli.msg import msg_app
+from rfc.cli.sched import sched_app
+from rfc.cli.sim import sim_app
 from rfc.errors import RfcError
 
 app = typer.Typer(
@@ -23,6 +26,9 @@ app = typer.Typer(
     add_completion=False,
 )
 app.add_typer(msg_app, name="msg")
+app.add_typer(build_app)
+app.add_typer(sim_app)
+app.add_typer(sched_app, name="sched")
 
 
 def _version(value: bool) -> None:

@@ -13,6 +13,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 from dataclasses import dataclass, replace
 from enum import StrEnum
+from functools import cached_property
 
 from rfc.messages.rosbags_adapter import PRIMITIVE_SIZES, FieldDef, MessageTypes, Middleware
 
@@ -64,9 +65,9 @@ class LayoutField:
     element: Layout | None = None
     selected: bool = True
 
-    @property
+    @cached_property
     def path(self) -> str:
-        """Dotted path with fixed-array indices: ``pose.covariance[35]``."""
+        """Dotted path with fixed-array indices: ``pose.covariance[35]`` (computed once)."""
         return format_path(self.steps)
 
     @property

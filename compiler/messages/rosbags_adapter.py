@@ -7,6 +7,7 @@ rosbags' tuples, and so that a rosbags upgrade touches one file.
 
 from __future__ import annotations
 
+import tempfile
 from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from enum import StrEnum
@@ -17,6 +18,10 @@ from typing import Any
 import numpy as np
 from rosbags.highlevel import AnyReader, AnyReaderError
 from rosbags.interfaces import Nodetype
+from rosbags.rosbag1 import Writer as Rosbag1Writer
+from rosbags.rosbag1 import WriterError as Rosbag1WriterError
+from rosbags.rosbag2 import StoragePlugin, WriterError
+from rosbags.rosbag2 import Writer as Rosbag2Writer
 from rosbags.serde import SerdeError
 from rosbags.typesys import Stores, TypesysError, get_types_from_msg, get_typestore
 from rosbags.typesys.base import normalize_fieldname
@@ -379,3 +384,109 @@ def read_bag(
         raise RfcError(f"bag '{path}' does not exist") from None
     except AnyReaderError as exc:
         raise RfcError(f"cannot read bag '{path}': {exc}") from None
+
+
+def bag_topics(path: str | Path, types: MessageTypes, *, counts: bool = False) -> dict[str, Any]:
+    """Return the topics of a bag with their canonical message types (or message counts).
+
+    Raises:
+        RfcError: The bag is missing or unreadable.
+    """
+    try:
+        with AnyReader([Path(path)], default_typestore=types._store) as reader:
+            found: dict[str, Any] = {}
+            for connection in reader.connections:
+                if counts:
+                    found[connection.topic] = found.get(connection.topic, 0) + connection.msgcount
+                else:
+                    found[connection.topic] = connection.msgtype
+            return found
+    except FileNotFoundError:
+        raise RfcError(f"bag '{path}' does not exist") from None
+    except AnyReaderError as exc:
+        raise RfcError(f"cannot read bag '{path}': {exc}") from None
+
+
+#: Bag formats rfc writes, by the suffix of the path asked for.
+BAG_SUFFIXES = {".bag": Middleware.ROS1, ".mcap": Middleware.ROS2, ".db3": Middleware.ROS2}
+
+
+def check_bag_path(path: str | Path, middleware: Middleware) -> Middleware:
+    """Check that a bag of `middleware` messages can be written at `path`.
+
+    Raises:
+        RfcError: An unknown suffix, one of the other middleware, a directory, or a missing
+            parent directory.
+    """
+    target = Path(path)
+    chosen = BAG_SUFFIXES.get(target.suffix)
+    if chosen is None:
+        raise RfcError(
+            f"cannot tell the bag format of '{target}'",
+            hint="end it in .bag (ROS 1), .mcap or .db3 (ROS 2)",
+        )
+    if chosen is not middleware:
+        raise RfcError(
+            f"'{target}' would be a {chosen.label} bag, but the messages are {middleware.label}",
+            hint="end it in .bag" if middleware is Middleware.ROS1 else "end it in .mcap or .db3",
+        )
+    if target.is_dir():
+        raise RfcError(f"'{target}' is a directory; name a bag file")
+    if not target.parent.is_dir():
+        raise RfcError(f"the directory of '{target}' does not exist")
+    return chosen
+
+
+def write_bag(
+    path: str | Path,
+    types: MessageTypes,
+    topics: Mapping[str, str],
+    messages: Iterable[tuple[str, int, bytes]],
+) -> None:
+    """Write serialized messages to a new bag with rosbags' writers, all at once or not at all.
+
+    The path's suffix chooses the format: ``.bag`` a ROS 1 bag, ``.mcap`` or ``.db3`` a
+    single-file ROS 2 bag of that storage. The bag is written beside `path` and renamed into
+    place when complete; an existing file at `path` is replaced.
+
+    Args:
+        path: Where the bag goes.
+        types: The definitions of the messages (and the middleware they are serialized for).
+        topics: Every topic to create, with its canonical type (even if no message comes).
+        messages: (topic, time stamp in ns, serialized bytes) in time order.
+
+    Raises:
+        RfcError: An unknown suffix, a middleware the format does not carry, or a write error.
+    """
+    target = Path(path)
+    middleware = check_bag_path(target, types.middleware)
+    with tempfile.TemporaryDirectory(prefix=f".{target.name}.", dir=target.parent) as scratch:
+        try:
+            if middleware is Middleware.ROS1:
+                result = Path(scratch) / f"out{target.suffix}"
+                with Rosbag1Writer(result) as writer:
+                    _fill(writer, types, topics, messages)
+            else:
+                mcap = target.suffix == ".mcap"
+                storage = StoragePlugin.MCAP if mcap else StoragePlugin.SQLITE3
+                directory = Path(scratch) / "out"
+                with Rosbag2Writer(directory, version=9, storage_plugin=storage) as writer:
+                    _fill(writer, types, topics, messages)
+                (result,) = directory.glob(f"*{target.suffix}")
+            result.replace(target)
+        except (OSError, WriterError, Rosbag1WriterError) as exc:
+            raise RfcError(f"cannot write bag '{target}': {exc}") from None
+
+
+def _fill(
+    writer: Rosbag1Writer | Rosbag2Writer,
+    types: MessageTypes,
+    topics: Mapping[str, str],
+    messages: Iterable[tuple[str, int, bytes]],
+) -> None:
+    connections = {
+        topic: writer.add_connection(topic, msgtype, typestore=types._store)
+        for topic, msgtype in topics.items()
+    }
+    for topic, stamp, data in messages:
+        writer.write(connections[topic], stamp, data)

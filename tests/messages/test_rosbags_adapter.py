@@ -6,7 +6,15 @@ import pytest
 
 from rfc.errors import RfcError
 from rfc.messages.layout import flatten
-from rfc.messages.rosbags_adapter import MessageTypes, Middleware, canonical_name
+from rfc.messages.rosbags_adapter import (
+    MessageTypes,
+    Middleware,
+    bag_topics,
+    canonical_name,
+    message_types,
+    read_bag,
+    write_bag,
+)
 from tests.conftest import shared_file
 
 
@@ -71,3 +79,29 @@ def test_definitions_embedded_in_a_bag():
 def test_missing_bag_is_an_error(tmp_path):
     with pytest.raises(RfcError, match="does not exist"):
         MessageTypes(Middleware.ROS2, bags=[tmp_path / "missing.mcap"])
+
+
+@pytest.mark.parametrize(
+    ("middleware", "suffix"), [("ros2", ".mcap"), ("ros2", ".db3"), ("ros1", ".bag")]
+)
+def test_written_bags_read_back_with_every_topic(tmp_path, middleware, suffix):
+    types = message_types(middleware)
+    point = "geometry_msgs/msg/Point"
+    data = types.serialize(types.build(point, {"x": 1.0, "y": -2.0, "z": 0.5}), point)
+    path = tmp_path / f"out{suffix}"
+    write_bag(path, types, {"/p": point, "/silent": point}, [("/p", 5, data), ("/p", 9, data)])
+    assert bag_topics(path, types) == {"/p": point, "/silent": point}
+    assert bag_topics(path, types, counts=True) == {"/p": 2, "/silent": 0}
+    assert [(m.topic, m.timestamp_ns, m.data) for m in read_bag(path, types)] == [
+        ("/p", 5, data),
+        ("/p", 9, data),
+    ]
+    assert sorted(p.name for p in tmp_path.iterdir()) == [path.name]
+
+
+def test_a_failed_bag_write_leaves_nothing(tmp_path):
+    types = message_types("ros2")
+    path = tmp_path / "out.mcap"
+    with pytest.raises(KeyError):
+        write_bag(path, types, {}, [("/unknown", 1, b"")])
+    assert list(tmp_path.iterdir()) == []

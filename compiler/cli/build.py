@@ -1,0 +1,85 @@
+"""`rfc check SPEC` and `rfc build SPEC`: from a spec to the holistic model and artifacts."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from rfc.ir.model import BlockKind, Design
+
+build_app = typer.Typer()
+
+SpecArgument = Annotated[
+    Path,
+    typer.Argument(metavar="SPEC", help="The system specification: a .yaml file or a .py file."),
+]
+
+
+@build_app.command("check")
+def check(spec: SpecArgument) -> None:
+    """Validate a spec: run the whole pipeline and report the first error, if any."""
+    from rfc.driver import compile_spec
+
+    design = compile_spec(str(spec))
+    print(f"ok: {spec}: {_summary(design)}")
+
+
+@build_app.command("build")
+def build(
+    spec: SpecArgument,
+    output: Annotated[
+        Path,
+        typer.Option(
+            "--output", "-o", metavar="DIR", help="Output directory (replaced as a whole)."
+        ),
+    ] = Path("build"),
+    emit_ir: Annotated[
+        bool, typer.Option("--emit-ir", help="Write the holistic model to DIR/model.yaml.")
+    ] = False,
+    dump_ir_after: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--dump-ir-after",
+            metavar="PASS",
+            help="Print the IR after this pass (repeatable): parse, resolve-types, "
+            "check-connections, expand-selections, flatten-messages, derive-infrastructure.",
+        ),
+    ] = None,
+) -> None:
+    """Build every artifact of a spec into DIR, with report.md; nothing is written on error."""
+    from rfc.driver import compile_spec
+    from rfc.ir.text import format_ir
+    from rfc.lower import lower
+    from rfc.lower.artifacts import BuildOptions
+    from rfc.lower.writer import write_artifacts
+    from rfc.passes.pipeline import pass_names
+
+    wanted = list(dict.fromkeys(dump_ir_after or ()))
+    for name in wanted:
+        if name not in pass_names():
+            raise typer.BadParameter(
+                f"'{name}' is not a pass; choose from {', '.join(pass_names())}",
+                param_hint="--dump-ir-after",
+            )
+
+    def dump(name: str, design: Design) -> None:
+        if name in wanted:
+            sys.stdout.write(f"# IR after {name}\n{format_ir(design)}")
+
+    design = compile_spec(str(spec), after=dump)
+    artifacts = lower(design, BuildOptions(emit_ir=emit_ir), spec.read_text(encoding="utf-8"))
+    write_artifacts(artifacts, output, str(output))
+    names = ", ".join(a.path for a in artifacts)
+    print(f"built {design.project.name} into {output}: {names}", file=sys.stderr)
+
+
+def _summary(design: Design) -> str:
+    counts = {kind: len(design.blocks_of(kind)) for kind in BlockKind}
+    parts = [f"{n} {kind.value}{'s' if n != 1 else ''}" for kind, n in counts.items()]
+    return (
+        f"project {design.project.name}, {', '.join(parts)}, "
+        f"{len(design.connections)} connection{'s' if len(design.connections) != 1 else ''}"
+    )

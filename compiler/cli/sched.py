@@ -1,0 +1,94 @@
+"""`rfc sched ...`: generate the hardware schedulers and measure them."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+from rich.console import Console
+from rich.table import Table
+
+from rfc.lib.schedulers.generate import entity_name, generate_hdl, grant_latency, synthesize
+from rfc.lib.schedulers.spec import (
+    DEFAULT_TRANSFER,
+    AnySchedulerSpec,
+    SchedulerSpec,
+    parse_scheduler,
+)
+
+sched_app = typer.Typer(help="Generate and measure the hardware schedulers.", no_args_is_help=True)
+
+
+@sched_app.command("synth")
+def synth(
+    algorithm: Annotated[
+        str,
+        typer.Option(
+            "--algorithm",
+            "-a",
+            help="LRU, NPFP, PFP, ROEDF, LOEDF or LST; or a composition such as "
+            "'LRU(LOEDF,LST)' (children share the inputs evenly, or 'LRU(LOEDF:100,LST:28)').",
+        ),
+    ],
+    n: Annotated[int, typer.Option("--n", "-n", help="Number of inputs (accelerators).")],
+    transfer: Annotated[
+        int, typer.Option(help="Transfer time T of every input, in beats.")
+    ] = DEFAULT_TRANSFER,
+    deadline: Annotated[
+        int | None, typer.Option(help="Relative deadline D in cycles (default T + 100).")
+    ] = None,
+    counter_bits: Annotated[
+        int | None, typer.Option(help="Width of the deadline/slack counters.")
+    ] = None,
+    output: Annotated[
+        Path | None, typer.Option("--output", "-o", help="Also write the VHDL and Verilog here.")
+    ] = None,
+    no_cache: Annotated[
+        bool, typer.Option("--no-cache", help="Synthesize even when a cached result exists.")
+    ] = False,
+    as_json: Annotated[bool, typer.Option("--json", help="Print one JSON document.")] = False,
+) -> None:
+    """LUT/FF of one scheduler (GHDL synthesis + Yosys synth_xilinx, 7-series) and its latency."""
+    spec = parse_scheduler(algorithm, n, transfer, deadline, counter_bits)
+    if output is not None:
+        generate_hdl(spec, output)
+    report = synth_report(spec, use_cache=not no_cache)
+    if as_json:
+        print(json.dumps(report, indent=2))
+    else:
+        Console(highlight=False).print(_table(report))
+
+
+def synth_report(spec: AnySchedulerSpec, *, use_cache: bool = True) -> dict[str, Any]:
+    """The `rfc sched synth --json` document (DESIGN.md §9; keys are only ever added)."""
+    result = synthesize(spec, use_cache=use_cache)
+    return {
+        "algorithm": spec.algorithm.value if isinstance(spec, SchedulerSpec) else spec.name,
+        "n": spec.n,
+        "lut": result.resources.lut,
+        "ff": result.resources.ff,
+        "grant_latency_cycles": grant_latency(spec),
+        "burst_latency_cycles": grant_latency(spec, requests=spec.n),
+        "carry": result.resources.carry,
+        "entity": entity_name(spec),
+        "transfer": max(spec.transfer),
+        "deadline": max(spec.deadline),
+        "cached": result.cached,
+    }
+
+
+def _table(report: dict[str, Any]) -> Table:
+    table = Table(title=f"{report['algorithm']} scheduler, N = {report['n']} (xc7)")
+    table.add_column("measure")
+    table.add_column("value", justify="right")
+    for key, label in (
+        ("lut", "LUTs"),
+        ("ff", "flip-flops"),
+        ("carry", "CARRY4"),
+        ("grant_latency_cycles", "grant latency (cycles, one request)"),
+        ("burst_latency_cycles", "first grant after all N request (cycles)"),
+    ):
+        table.add_row(label, str(report[key]))
+    return table

@@ -1,0 +1,266 @@
+"""`rfc sim SPEC --bag IN --out OUT`: replay a bag through the whole system, write its outputs.
+
+Everything the user can get wrong — the spec, the bag's topics and types, the output path, a
+ROS-SW accelerator's function — is checked before anything runs; nothing is written unless the
+run completes. The account at the end says what came in, what went out and what was dropped
+where and why (`rfc.runtime.account`).
+"""
+
+from __future__ import annotations
+
+import json
+import shutil
+import sys
+import tempfile
+from collections.abc import Callable, Generator
+from contextlib import closing
+from dataclasses import dataclass, replace
+from enum import StrEnum
+from pathlib import Path
+from typing import TYPE_CHECKING, Annotated
+
+import typer
+from rich.console import Console
+from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+from rich.table import Table
+
+from rfc.errors import RfcError, did_you_mean
+from rfc.runtime.core import DEFAULT_DEPTH, QueuePolicy
+
+if TYPE_CHECKING:
+    from rfc.messages.rosbags_adapter import BagMessage, MessageTypes
+    from rfc.runtime.account import Account
+    from rfc.runtime.core import Published, Runtime
+    from rfc.runtime.hardware import SimulationTop
+    from rfc.runtime.plan import RuntimePlan
+
+
+class Backend(StrEnum):
+    """Which simulator runs the logic."""
+
+    GHDL = "ghdl"
+    """The VHDL of the whole logic in GHDL, the runtime in cocotb (any system)."""
+    MYHDL = "myhdl"
+    """MyHDL's simulator, in process (logic whose top provider gives a MyHDL design)."""
+
+
+sim_app = typer.Typer()
+
+
+@sim_app.command("sim")
+def sim(
+    spec: Annotated[Path, typer.Argument(metavar="SPEC", help="The system specification.")],
+    bag: Annotated[
+        Path, typer.Option("--bag", metavar="IN", help="Input bag: ROS 1 .bag, ROS 2 .mcap/.db3.")
+    ],
+    out: Annotated[
+        Path,
+        typer.Option("--out", metavar="OUT", help="Output bag: .bag (ROS 1), .mcap or .db3."),
+    ],
+    backend: Annotated[
+        Backend, typer.Option("--backend", help="Simulator of the logic (when it has any).")
+    ] = Backend.GHDL,
+    queue: Annotated[
+        QueuePolicy,
+        typer.Option("--queue", help="Callback queues: one per subscriber, or ROS's shared one."),
+    ] = QueuePolicy.PER_SUBSCRIBER,
+    depth: Annotated[
+        int, typer.Option("--depth", min=1, help="Depth of each callback queue.")
+    ] = DEFAULT_DEPTH,
+    drain_cycles: Annotated[
+        int,
+        typer.Option("--drain-cycles", min=1, help="Quiet cycles after which the logic is idle."),
+    ] = 1000,
+    seed: Annotated[int, typer.Option("--seed", help="Seed of random idle/backpressure.")] = 1,
+    as_json: Annotated[
+        bool, typer.Option("--json", help="Print the account as one JSON document.")
+    ] = False,
+    top_provider: Annotated[
+        str | None, typer.Option("--top-provider", hidden=True, metavar="MODULE:FUNCTION")
+    ] = None,
+) -> None:
+    """Replay a bag through the whole system and write each publisher's messages to OUT."""
+    from rfc.driver import compile_spec
+    from rfc.messages.rosbags_adapter import check_bag_path, message_types, write_bag
+    from rfc.runtime.core import QueueConfig, Runtime
+    from rfc.runtime.plan import RuntimePlan
+
+    design = compile_spec(str(spec))
+    project = design.project
+    check_bag_path(out, project.middleware)
+    if out.resolve() == bag.resolve():
+        raise RfcError(f"--out '{out}' is the input bag", hint="write the outputs to a new file")
+    types = message_types(
+        project.middleware, project.distro, tuple(str(p) for p in project.msg_paths), (str(bag),)
+    )
+    plan = RuntimePlan(design)
+    topic_names = _match_topics(plan, bag, types)
+    queues = QueueConfig(queue, depth)
+    runtime = Runtime(plan, queues)  # finds every ROS-SW function before anything runs
+    run = _Run(bag, types, topic_names, runtime, backend, drain_cycles, seed, top_provider)
+    console = Console(stderr=True, highlight=False)
+    with Progress(
+        TextColumn("replaying"),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TimeElapsedColumn(),
+        console=console,
+        transient=True,
+        disable=as_json or not console.is_terminal,
+    ) as progress:
+        task = progress.add_task("replay", total=run.total())
+        published, account = run.execute(lambda done: progress.update(task, completed=done))
+    write_bag(
+        out,
+        types,
+        {output.topic: output.message for output in plan.outputs},
+        ((p.topic, p.stamp, p.data) for p in published),
+    )
+    if as_json:
+        print(json.dumps({"out": str(out), **account.to_json()}, indent=1))
+    else:
+        _print_account(Console(highlight=False), account, plan, out)
+
+
+@dataclass(frozen=True)
+class _Run:
+    """One replay: the bag's messages of the spec's topics through the chosen backend."""
+
+    bag: Path
+    types: MessageTypes
+    topic_names: dict[str, str]
+    runtime: Runtime
+    backend: Backend
+    drain_cycles: int
+    seed: int
+    top_provider: str | None
+
+    def total(self) -> int:
+        from rfc.messages.rosbags_adapter import bag_topics
+
+        counts = bag_topics(self.bag, self.types, counts=True)
+        return sum(counts[topic] for topic in self.topic_names)
+
+    def messages(self) -> Generator[BagMessage, None, None]:
+        from rfc.messages.rosbags_adapter import read_bag
+
+        for message in read_bag(self.bag, self.types, sorted(self.topic_names)):
+            yield replace(message, topic=self.topic_names[message.topic])
+
+    def execute(self, progress: Callable[[int], None]) -> tuple[list[Published], Account]:
+        from rfc.runtime.hardware import DEFAULT_TOP_PROVIDER, load_top_provider
+        from rfc.runtime.replay import replay
+        from rfc.toolchain import CosimError
+
+        runtime, design = self.runtime, self.runtime.plan.design
+        if not runtime.plan.has_logic:
+            with closing(self.messages()) as messages:
+                return replay(runtime, messages, None, progress), runtime.account
+        provider = load_top_provider(self.top_provider or DEFAULT_TOP_PROVIDER)
+        scratch = Path(tempfile.mkdtemp(prefix="rfc-sim-"))
+        try:
+            top = provider(design, scratch / "hdl")
+            if self.backend is Backend.MYHDL:
+                published = self._myhdl(top, progress)
+            else:
+                published, account = self._ghdl(top, scratch, progress)
+                runtime.account = account
+        except CosimError as exc:  # the logic or a ROS-SW function failed in the simulator
+            raise RfcError(f"the simulation of {design.project.name} failed: {exc}") from None
+        except BaseException:
+            shutil.rmtree(scratch, ignore_errors=True)
+            raise
+        shutil.rmtree(scratch, ignore_errors=True)  # kept above when it failed, for its log
+        return published, runtime.account
+
+    def _ghdl(
+        self, top: SimulationTop, scratch: Path, progress: Callable[[int], None]
+    ) -> tuple[list[Published], Account]:
+        from rfc.runtime.hardware import simulate_with_ghdl
+
+        run = simulate_with_ghdl(
+            self.runtime.plan.design,
+            self.bag.resolve(),
+            self.topic_names,
+            top,
+            scratch,
+            queues=self.runtime.queues,
+            drain_cycles=self.drain_cycles,
+            seed=self.seed,
+            progress=progress,
+        )
+        return run.published, run.account
+
+    def _myhdl(self, top: SimulationTop, progress: Callable[[int], None]) -> list[Published]:
+        from rfc.runtime.myhdl_sim import simulate_with_myhdl
+
+        factory = getattr(top, "myhdl", None)
+        if factory is None:
+            raise RfcError(
+                "the logic of this system is not a MyHDL design, so it cannot run in MyHDL",
+                hint="use --backend ghdl",
+            )
+        with closing(self.messages()) as messages:
+            return simulate_with_myhdl(
+                factory,
+                top.bus_width,
+                self.runtime,
+                messages,
+                clock_mhz=self.runtime.plan.design.project.clock_mhz,
+                drain_cycles=self.drain_cycles,
+                seed=self.seed,
+                progress=progress,
+            )
+
+
+def _match_topics(plan: RuntimePlan, bag: Path, types: MessageTypes) -> dict[str, str]:
+    """Bag topic → spec topic for every subscriber; a leading '/' may differ (ROS 1 bags)."""
+    from rfc.messages.rosbags_adapter import bag_topics
+
+    present = bag_topics(bag, types)
+    by_name = {topic.lstrip("/"): topic for topic in present}
+    names: dict[str, str] = {}
+    for topic_input in plan.inputs:
+        block = plan.design.block(topic_input.block)
+        found = by_name.get(topic_input.topic.lstrip("/"))
+        if found is None:
+            raise RfcError(
+                f"bag '{bag}' has no topic '{topic_input.topic}', which subscriber "
+                f"'{topic_input.block}' takes",
+                location=block.at("topic"),
+                hint=did_you_mean(topic_input.topic, present)
+                or f"its topics are {', '.join(sorted(present)) or 'none'}",
+            )
+        if present[found] != topic_input.message:
+            raise RfcError(
+                f"topic '{found}' of bag '{bag}' carries {present[found]}, but subscriber "
+                f"'{topic_input.block}' takes {topic_input.message}",
+                location=block.at("message"),
+                hint=f"subscribe to a topic of {topic_input.message}, or set the subscriber's "
+                f"message to {present[found]}",
+            )
+        names[found] = topic_input.topic
+    return names
+
+
+def _print_account(console: Console, account: Account, plan: RuntimePlan, out: Path) -> None:
+    table = Table(title=f"account of {plan.design.project.name}", title_justify="left")
+    for column in ("", "where", "messages"):
+        table.add_column(column, justify="right" if column == "messages" else "left")
+    for topic, count in account.received.items():
+        table.add_row("in", topic, str(count))
+    for name, count in account.to_logic.items():
+        table.add_row("to logic", name, str(count))
+    for name, count in account.from_logic.items():
+        table.add_row("from logic", name, str(count))
+    for name, count in account.software_calls.items():
+        table.add_row("software calls", name, str(count))
+    for output in plan.outputs:
+        table.add_row("out", output.topic, str(account.published.get(output.topic, 0)))
+    for (where, reason), count in sorted(account.dropped.items()):
+        table.add_row(f"dropped: {reason}", where, str(count))
+    if not account.dropped:
+        table.add_row("dropped", "—", "0")
+    console.print(table)
+    total = sum(account.published.values())
+    print(f"wrote {total} message{'s' if total != 1 else ''} to {out}", file=sys.stderr)

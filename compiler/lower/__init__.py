@@ -1,0 +1,30 @@
+"""Lowering: the holistic model becomes artifacts, written to the output directory at once.
+
+A lowering is a function ``(design, options) -> artifacts``. To add an artifact kind (VHDL,
+tcl, the runtime's configuration...), write one such function in its own module and add it to
+`LOWERINGS`. `lower` runs them all in memory, then the report counts their lines; only then
+does `rfc.lower.writer` put anything on disk, so an error leaves nothing half-written.
+"""
+
+from __future__ import annotations
+
+from rfc.ir.model import Design
+from rfc.lower.artifacts import Artifact, BuildOptions, Lowering
+from rfc.lower.model import holistic_model
+from rfc.lower.report import build_report
+from rfc.lower.ros2_node import ros2_node
+
+#: Every lowering, in the order their artifacts are listed in the report.
+LOWERINGS: tuple[Lowering, ...] = (holistic_model, ros2_node)
+
+
+def lower(design: Design, options: BuildOptions, spec_text: str) -> tuple[Artifact, ...]:
+    """Produce every artifact of the design, then the report about them.
+
+    Args:
+        design: The holistic model (stage DERIVED).
+        options: What to build.
+        spec_text: The spec's text, for the report's line count.
+    """
+    artifacts = tuple(a for lowering in LOWERINGS for a in lowering(design, options))
+    return (*artifacts, build_report(design, spec_text, artifacts))

@@ -1,0 +1,39 @@
+"""Front-ends: a YAML or Python system specification becomes a `Design` (stage PARSED)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from rfc.errors import RfcError
+from rfc.ir.model import Design
+
+#: Spec formats by file suffix.
+SPEC_SUFFIXES = (".yaml", ".yml", ".py")
+
+
+def load_spec(path: Path, display: str | None = None) -> Design:
+    """Read a spec file with the front-end its suffix names.
+
+    Args:
+        path: A ``.yaml``/``.yml`` or ``.py`` spec.
+        display: How to name the file in error locations (default: `path` as given).
+
+    Raises:
+        RfcError: The file is missing, of an unknown kind, or not a valid spec.
+    """
+    display = display or str(path)
+    if not path.is_file():
+        raise RfcError(f"spec '{display}' does not exist")
+    suffix = path.suffix.lower()
+    if suffix in (".yaml", ".yml"):
+        from rfc.spec.yaml_frontend import load_yaml_spec
+
+        return load_yaml_spec(path, display)
+    if suffix == ".py":
+        from rfc.spec.python_loader import load_python_spec
+
+        return load_python_spec(path, display)
+    raise RfcError(
+        f"spec '{display}' is neither YAML nor Python; expected a file ending in "
+        f"{', '.join(SPEC_SUFFIXES)}"
+    )

@@ -1,0 +1,301 @@
+"""The Python front-end: accelerators as annotated MyHDL blocks, a system as a `Project`.
+
+    import rfc
+
+    @rfc.accelerator(inputs={"q": "geometry_msgs/Quaternion"},
+                     outputs={"euler": "geometry_msgs/Point"}, reference=quat_to_euler)
+    @block
+    def QuaternionToEuler(clk, ...):
+        ...
+
+    project = rfc.Project("RotationConverterNode", middleware="ROS2")
+    imu = project.subscriber("Quaternion_sub", "geometry_msgs/Quaternion")
+    acc = project.accelerator("QuatToEuler_acc", QuaternionToEuler)
+    pub = project.publisher("Euler_pub", "geometry_msgs/Point")
+    imu >> acc >> pub                     # acc["q"] names a port; .include(...) selects
+
+Every call records the user's call site, so the passes report errors at the line of the
+``>>`` or the ``project.subscriber(...)`` responsible, exactly as they report YAML lines.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from pathlib import Path
+from typing import Any
+
+from rfc.errors import RfcError, SourceLocation
+from rfc.ir.model import (
+    AcceleratorType,
+    Block,
+    BlockKind,
+    Connection,
+    Design,
+    Endpoint,
+    ProjectSettings,
+)
+from rfc.spec import common
+from rfc.spec.python_accelerators import AcceleratorDefinition
+from rfc.spec.python_calls import as_text, as_texts, call_site
+
+
+class _Source:
+    """The sending side of a `>>`: a block, maybe one of its ports, maybe a selection."""
+
+    _project: Project
+    _block: str
+    _port: str | None = None
+    _include: tuple[str, ...] = ()
+    _exclude: tuple[str, ...] = ()
+
+    def include(self, *paths: str) -> Selection:
+        """Carry only these fields over the next ``>>`` (dotted paths, ``*`` wildcards)."""
+        location, _ = call_site()
+        return Selection(
+            self._project,
+            self._block,
+            self._port,
+            self._include + as_texts(paths, "include", location),
+            self._exclude,
+        )
+
+    def exclude(self, *paths: str) -> Selection:
+        """Do not carry these fields over the next ``>>``."""
+        location, _ = call_site()
+        return Selection(
+            self._project,
+            self._block,
+            self._port,
+            self._include,
+            self._exclude + as_texts(paths, "exclude", location),
+        )
+
+    def __rshift__(self, destination: Any) -> BlockHandle:
+        """Connect to a block, a block's port (``acc["q"]``) or a selection of one."""
+        location, _ = call_site()
+        return self._project._connect(self, destination, location)
+
+
+class BlockHandle(_Source):
+    """A block of a `Project`: connect it with ``>>``; ``handle["port"]`` names a port."""
+
+    def __init__(self, project: Project, name: str) -> None:
+        self._project, self._block = project, name
+
+    @property
+    def name(self) -> str:
+        """The block's name."""
+        return self._block
+
+    def __getitem__(self, port_name: str) -> PortHandle:
+        return PortHandle(self._project, self._block, port_name)
+
+    def __repr__(self) -> str:
+        return f"<rfc block {self._block}>"
+
+
+class PortHandle(_Source):
+    """One port of a block."""
+
+    def __init__(self, project: Project, block: str, port_name: str) -> None:
+        self._project, self._block, self._port = project, block, port_name
+
+
+class Selection(_Source):
+    """A block or port with the fields the next ``>>`` carries."""
+
+    def __init__(
+        self,
+        project: Project,
+        block: str,
+        port_name: str | None,
+        include: tuple[str, ...],
+        exclude: tuple[str, ...],
+    ) -> None:
+        self._project, self._block, self._port = project, block, port_name
+        self._include, self._exclude = include, exclude
+
+
+class Project:
+    """A system: subscribers, accelerators and publishers, wired with ``>>``.
+
+    Args:
+        name: Project name.
+        fpga_part: Xilinx Zynq part.
+        middleware: ``ROS`` (ROS 1) or ``ROS2``.
+        distro: Type store (default: noetic for ROS 1, humble for ROS 2).
+        bus_width: Bits of the DMA AXI-Streams: 8, 32 or 64.
+        clock_mhz: Clock of the logic in MHz.
+        scheduler: LRU, NPFP, PFP, ROEDF, LOEDF, LST, or auto.
+        msg_paths: Directories of your own ``.msg`` files, relative to this file.
+    """
+
+    def __init__(
+        self,
+        name: str,
+        *,
+        fpga_part: str = common.DEFAULT_FPGA_PART,
+        middleware: str = "ROS2",
+        distro: str | None = None,
+        bus_width: int = common.DEFAULT_BUS_WIDTH,
+        clock_mhz: float = common.DEFAULT_CLOCK_MHZ,
+        scheduler: str = common.DEFAULT_SCHEDULER,
+        msg_paths: Iterable[str] = (),
+    ) -> None:
+        location, base = call_site()
+        chosen = common.middleware(as_text(middleware, "middleware", location), location)
+        directories = [
+            common.message_directory(text, base, location)
+            for text in as_texts(msg_paths, "msg_paths", location)
+        ]
+        self._settings = ProjectSettings(
+            name=as_text(name, "project name", location),
+            fpga_part=fpga_part,
+            fpga_family=common.fpga_family(as_text(fpga_part, "fpga_part", location), location),
+            middleware=chosen,
+            distro=common.distro(
+                None if distro is None else as_text(distro, "distro", location), chosen, location
+            ),
+            bus_width=common.bus_width(bus_width, location),
+            clock_mhz=common.clock_mhz(clock_mhz, location),
+            scheduler=common.scheduler(scheduler, location),
+            msg_paths=tuple(directories),
+            spec_file=base / Path(location.file).name,
+            location=location,
+        )
+        self._accelerators: list[AcceleratorType] = []
+        self._blocks: list[Block] = []
+        self._connections: list[Connection] = []
+
+    @property
+    def name(self) -> str:
+        """The project's name."""
+        return self._settings.name
+
+    def subscriber(self, name: str, message: str, **timing: Any) -> BlockHandle:
+        """Add a subscriber converter (ROS>accelerator) receiving `message` on a topic.
+
+        Keyword Args:
+            topic: The ROS topic (default: ``/<name>``).
+            period: Clock cycles, or a duration such as ``"10 us"``, between messages.
+            deadline: Relative deadline, likewise (default: the period).
+            max_bytes: Largest frame accepted (variable-size messages).
+        """
+        return self._converter(BlockKind.SUBSCRIBER, name, message, timing)
+
+    def publisher(self, name: str, message: str, **timing: Any) -> BlockHandle:
+        """Add a publisher converter (accelerator>ROS) sending `message`; see `subscriber`."""
+        return self._converter(BlockKind.PUBLISHER, name, message, timing)
+
+    def accelerator(self, name: str, definition: AcceleratorDefinition) -> BlockHandle:
+        """Add an instance of an accelerator type defined with `accelerator`."""
+        location, _ = call_site()
+        if not isinstance(definition, AcceleratorDefinition):
+            raise RfcError(
+                f"accelerator '{name}' needs a type made with @rfc.accelerator or "
+                f"rfc.external_accelerator, not {definition!r}",
+                location=location,
+            )
+        if not any(t is definition.definition for t in self._accelerators):
+            self._accelerators.append(definition.definition)
+        self._blocks.append(
+            Block(
+                as_text(name, "block name", location),
+                BlockKind.ACCELERATOR,
+                location,
+                accelerator=definition.definition.name,
+            )
+        )
+        return BlockHandle(self, name)
+
+    def connect(
+        self,
+        source: Any,
+        destination: Any,
+        *,
+        include: Iterable[str] = (),
+        exclude: Iterable[str] = (),
+    ) -> BlockHandle:
+        """Connect two blocks or ports, like ``source.include(...) >> destination``."""
+        location, _ = call_site()
+        if not isinstance(source, _Source):
+            raise RfcError(
+                f"connect() needs a block or port as source, not {source!r}", location=location
+            )
+        selected = Selection(
+            source._project,
+            source._block,
+            source._port,
+            source._include + as_texts(include, "include", location),
+            source._exclude + as_texts(exclude, "exclude", location),
+        )
+        return self._connect(selected, destination, location)
+
+    def _converter(
+        self, kind: BlockKind, name: str, message: str, timing: dict[str, Any]
+    ) -> BlockHandle:
+        location, _ = call_site()
+        owner = f"{kind.value} '{name}'"
+        unknown = sorted(set(timing) - {"topic", "period", "deadline", "max_bytes"})
+        if unknown:
+            raise RfcError(
+                f"{owner} got unknown argument '{unknown[0]}'; expected topic, period, "
+                "deadline or max_bytes",
+                location=location,
+            )
+        clock = self._settings.clock_mhz
+        period, deadline, max_bytes = (timing.get(k) for k in ("period", "deadline", "max_bytes"))
+        self._blocks.append(
+            Block(
+                name=as_text(name, f"{kind.value} name", location),
+                kind=kind,
+                location=location,
+                message=as_text(message, f"the message of {owner}", location),
+                topic=as_text(timing.get("topic", common.default_topic(name)), "topic", location),
+                period=None
+                if period is None
+                else common.cycles(period, clock, f"period of {owner}", location),
+                deadline=None
+                if deadline is None
+                else common.cycles(deadline, clock, f"deadline of {owner}", location),
+                max_bytes=None
+                if max_bytes is None
+                else common.positive(max_bytes, f"max_bytes of {owner}", location),
+            )
+        )
+        return BlockHandle(self, name)
+
+    def _connect(self, source: _Source, destination: Any, location: SourceLocation) -> BlockHandle:
+        if not isinstance(destination, _Source):
+            raise RfcError(
+                f"'>>' needs a block or a port on its right, not {destination!r}",
+                location=location,
+            )
+        for side in (source, destination):
+            if side._project is not self:
+                raise RfcError(
+                    f"block '{side._block}' belongs to another project", location=location
+                )
+        include = source._include + destination._include
+        exclude = source._exclude + destination._exclude
+        spots = {f"include[{i}]": location for i in range(len(include))}
+        spots.update({f"exclude[{i}]": location for i in range(len(exclude))})
+        self._connections.append(
+            Connection(
+                source=Endpoint(source._block, source._port, location),
+                destination=Endpoint(destination._block, destination._port, location),
+                location=location,
+                include=include,
+                exclude=exclude,
+                spots=spots,
+            )
+        )
+        return BlockHandle(self, destination._block)
+
+    def design(self) -> Design:
+        """The project as IR at stage PARSED (connections grouped by source block)."""
+        order = {block.name: index for index, block in enumerate(self._blocks)}
+        connections = sorted(self._connections, key=lambda c: order.get(c.source.block, len(order)))
+        return Design(
+            self._settings, tuple(self._accelerators), tuple(self._blocks), tuple(connections)
+        )

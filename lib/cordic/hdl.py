@@ -1,0 +1,274 @@
+"""MyHDL vectoring CORDIC blocks, iterative (one rotation per cycle) or pipelined (one per stage).
+
+Both have the same ports, the same latency (`CordicConfig.latency` cycles from the input
+handshake to `out_valid`) and the bits of `rfc.lib.cordic.model.vectoring`. The iterative block
+takes one input at a time (initiation interval latency + 2, about four adders and two barrel
+shifters of area); the pipelined one takes an input every cycle (one stage of three adders per
+iteration). Outputs stay put while `out_valid` is high and `out_ready` low.
+
+Wide constants reach VHDL only as ROM contents: MyHDL writes integers in expressions as VHDL
+integers, which stop at 32 bits.
+"""
+
+from __future__ import annotations
+
+from myhdl import Signal, always_comb, always_seq, block, intbv
+
+from rfc.lib.cordic.config import CordicConfig
+
+
+def _signed(bits: int, value: int = 0) -> Signal:
+    return Signal(intbv(value, min=-(1 << (bits - 1)), max=1 << (bits - 1)))
+
+
+@block
+def cordic_vectoring(
+    clk,
+    rst,
+    in_valid,
+    in_ready,
+    x,
+    y,
+    out_valid,
+    out_ready,
+    angle,
+    magnitude,
+    config: CordicConfig,
+    pipelined: bool = False,
+):
+    """Vectoring CORDIC: atan2(y, x) and gain·sqrt(x² + y²), with valid/ready handshakes.
+
+    Args:
+        clk: Clock.
+        rst: Synchronous reset (a MyHDL ``ResetSignal``).
+        in_valid: Input, `x` and `y` hold a pair to take.
+        in_ready: Output, the block takes the pair on this cycle when `in_valid` is high.
+        x: Input, signed ``config.width`` bits.
+        y: Input, signed ``config.width`` bits, same scale as `x`.
+        out_valid: Output, `angle` and `magnitude` hold a result.
+        out_ready: Input, the consumer takes the result on this cycle.
+        angle: Output, signed ``config.angle_width`` bits: radians with ``config.angle_frac``
+            fraction bits, in [-π, π] up to the residual (2**(1 - iterations)); exact when y
+            is 0 (0 for (0, 0)).
+        magnitude: Output, unsigned ``config.magnitude_width`` bits: gain·|(x, y)| in the
+            scale of the inputs, rounded down.
+        config: Widths and iterations.
+        pipelined: One stage per iteration (a new input every cycle) instead of one
+            iteration per cycle in a single stage.
+    """
+    if pipelined:
+        return cordic_pipelined(
+            clk, rst, in_valid, in_ready, x, y, out_valid, out_ready, angle, magnitude, config
+        )
+    return cordic_iterative(
+        clk, rst, in_valid, in_ready, x, y, out_valid, out_ready, angle, magnitude, config
+    )
+
+
+@block
+def cordic_iterative(
+    clk, rst, in_valid, in_ready, x, y, out_valid, out_ready, angle, magnitude, config
+):
+    """One micro-rotation per cycle through variable shifts; ports as `cordic_vectoring`."""
+    iterations = config.iterations
+    internal = config.internal_width
+    guard = config.guard
+    # The step counter rests at `iterations` while idle; that address reads 0.
+    rom = (*config.atan_table, 0)
+    xs = _signed(internal)
+    ys = _signed(internal)
+    zs = _signed(config.angle_width)
+    step = Signal(intbv(iterations, min=0, max=iterations + 1))
+    full = Signal(bool(0))
+    level = Signal(bool(0))
+    step_angle = _signed(config.angle_width)
+    x_turned, y_turned = _signed(internal), _signed(internal)
+    start_angle = _signed(config.angle_width)
+    y_zero = Signal(bool(0))
+    turn = cordic_prerotation(x, y, x_turned, y_turned, start_angle, y_zero, config)
+
+    @always_comb
+    def lookup():
+        step_angle.next = rom[step]
+
+    @always_seq(clk.posedge, reset=rst)
+    def iterate():
+        if step != iterations:
+            if ys >= 0:
+                xs.next = xs + (ys >> step)
+                ys.next = ys - (xs >> step)
+                if not level:
+                    zs.next = zs + step_angle
+            else:
+                xs.next = xs - (ys >> step)
+                ys.next = ys + (xs >> step)
+                if not level:
+                    zs.next = zs - step_angle
+            if step == iterations - 1:
+                full.next = True
+            step.next = step + 1
+        elif full:
+            if out_ready:
+                full.next = False
+        elif in_valid:
+            xs.next = x_turned
+            ys.next = y_turned
+            zs.next = start_angle
+            level.next = y_zero
+            step.next = 0
+
+    @always_comb
+    def outputs():
+        in_ready.next = step == iterations and not full
+        out_valid.next = full
+        magnitude.next = xs >> guard
+        angle.next = zs
+
+    return turn, lookup, iterate, outputs
+
+
+@block
+def cordic_pipelined(
+    clk, rst, in_valid, in_ready, x, y, out_valid, out_ready, angle, magnitude, config
+):
+    """A stage per micro-rotation with fixed shifts; ports as `cordic_vectoring`."""
+    internal = config.internal_width
+    guard = config.guard
+    advance = Signal(bool(0))
+    # Stage i holds the vector after i micro-rotations; stage 0 is the pre-rotated input.
+    count = config.iterations + 1
+    xs = [_signed(internal) for _ in range(count)]
+    ys = [_signed(internal) for _ in range(count)]
+    zs = [_signed(config.angle_width) for _ in range(count)]
+    valid = [Signal(bool(0)) for _ in range(count)]
+    level = [Signal(bool(0)) for _ in range(count)]
+    x_first, y_first, z_first, valid_first, level_first = xs[0], ys[0], zs[0], valid[0], level[0]
+    last = count - 1
+    x_last, z_last, valid_last = xs[last], zs[last], valid[last]
+    x_turned, y_turned = _signed(internal), _signed(internal)
+    start_angle = _signed(config.angle_width)
+    y_zero = Signal(bool(0))
+    turn = cordic_prerotation(x, y, x_turned, y_turned, start_angle, y_zero, config)
+
+    @always_seq(clk.posedge, reset=rst)
+    def prerotate():
+        if advance:
+            x_first.next = x_turned
+            y_first.next = y_turned
+            z_first.next = start_angle
+            level_first.next = y_zero
+            valid_first.next = in_valid
+
+    stages = [
+        cordic_stage(
+            clk,
+            rst,
+            advance,
+            i,
+            angle_step,
+            config,
+            (valid[i], level[i], xs[i], ys[i], zs[i]),
+            (
+                valid[i + 1],
+                level[i + 1] if i + 1 < last else None,
+                xs[i + 1],
+                ys[i + 1] if i + 1 < last else None,
+                zs[i + 1],
+            ),
+        )
+        for i, angle_step in enumerate(config.atan_table)
+    ]
+
+    @always_comb
+    def outputs():
+        advance.next = out_ready or not valid_last
+        in_ready.next = out_ready or not valid_last
+        out_valid.next = valid_last
+        magnitude.next = x_last >> guard
+        angle.next = z_last
+
+    return turn, prerotate, stages, outputs
+
+
+@block
+def cordic_prerotation(x, y, x_turned, y_turned, start_angle, y_zero, config):
+    """Inputs as the iterations start from them (combinational).
+
+    Negative x is turned by π (both negated; the angle starts at +π when y >= 0, else -π) so
+    that the micro-rotations only cover [-π/2, π/2]; x and y gain the guard bits; `y_zero`
+    marks level inputs, whose angle is exact.
+    """
+    internal = config.internal_width
+    guard = config.guard
+    angle_bits = config.angle_width
+    pi_rom = (config.pi,)
+
+    @always_comb
+    def turn():
+        xi = intbv(0, min=-(1 << (internal - 1)), max=1 << (internal - 1))
+        yi = intbv(0, min=-(1 << (internal - 1)), max=1 << (internal - 1))
+        half_turn = intbv(0, min=-(1 << (angle_bits - 1)), max=1 << (angle_bits - 1))
+        half_turn[:] = pi_rom[0]
+        xi[:] = x
+        yi[:] = y
+        if x < 0:
+            xi[:] = -xi
+            yi[:] = -yi
+            if y >= 0:
+                start_angle.next = half_turn
+            else:
+                start_angle.next = -half_turn
+        else:
+            start_angle.next = 0
+        x_turned.next = xi << guard
+        y_turned.next = yi << guard
+        y_zero.next = y == 0
+
+    return turn
+
+
+@block
+def cordic_stage(clk, rst, advance, shift, angle_step, config, before, after):
+    """One micro-rotation by ±atan(2**-shift), registered when the pipeline advances.
+
+    The last stage has no `y` and `level` outputs (`after` holds None there): nothing reads them.
+    """
+    valid_in, level_in, x_in, y_in, z_in = before
+    valid_out, level_out, x_out, y_out, z_out = after
+    rom = (angle_step,)
+    width = config.angle_width
+
+    @always_seq(clk.posedge, reset=rst)
+    def rotate():
+        if advance:
+            step = intbv(0, min=-(1 << (width - 1)), max=1 << (width - 1))
+            step[:] = rom[0]
+            valid_out.next = valid_in
+            level_out.next = level_in
+            if level_in:
+                step[:] = 0
+            if y_in >= 0:
+                x_out.next = x_in + (y_in >> shift)
+                y_out.next = y_in - (x_in >> shift)
+                z_out.next = z_in + step
+            else:
+                x_out.next = x_in - (y_in >> shift)
+                y_out.next = y_in + (x_in >> shift)
+                z_out.next = z_in - step
+
+    @always_seq(clk.posedge, reset=rst)
+    def rotate_last():
+        if advance:
+            step = intbv(0, min=-(1 << (width - 1)), max=1 << (width - 1))
+            step[:] = rom[0]
+            valid_out.next = valid_in
+            if level_in:
+                step[:] = 0
+            if y_in >= 0:
+                x_out.next = x_in + (y_in >> shift)
+                z_out.next = z_in + step
+            else:
+                x_out.next = x_in - (y_in >> shift)
+                z_out.next = z_in - step
+
+    return rotate_last if y_out is None else rotate

@@ -1,0 +1,178 @@
+"""PS→PL: read each chunk's header and route its payload to the subscriber the id names.
+
+The payload passes through combinationally (no added latency, one beat per cycle). Chunks that
+break the protocol — a header cut short by `tlast` or with bytes missing from its beats, an id
+without a subscriber, flags other than START|END, a payload whose byte count differs from the
+header's length — are counted in `error_count`; a chunk with a bad header is consumed and
+dropped up to its `tlast`, so the next chunk starts clean. A zero-length message (a ROS 1
+message without fields) reaches its subscriber as one null beat: `tkeep` all zero with `tlast`.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from myhdl import Signal, always_comb, always_seq, block, enum, intbv
+
+from rfc.lib.manager.header import FLAG_END, FLAG_START, HEADER_BYTES, BusGeometry
+
+#: Width of the saturating protocol-error counter.
+ERROR_COUNT_BITS = 16
+
+
+@block
+def chunk_demux(
+    clk: Any,
+    rst: Any,
+    s_tdata: Any,
+    s_tkeep: Any,
+    s_tvalid: Any,
+    s_tready: Any,
+    s_tlast: Any,
+    m_tdata: Any,
+    m_tkeep: Any,
+    m_tlast: Any,
+    m_tvalid: Any,
+    m_tready: Any,
+    error_count: Any,
+    width: int,
+    subscribers: int,
+) -> Any:
+    """Demultiplex PS→PL chunks to `subscribers` converters.
+
+    Args:
+        clk: Clock.
+        rst: Synchronous reset, active high.
+        s_tdata: intbv[width] in, from the DMA (MM2S).
+        s_tkeep: intbv[width/8] in.
+        s_tvalid: bool in.
+        s_tready: bool out.
+        s_tlast: bool in.
+        m_tdata: intbv[width] out, shared by every subscriber.
+        m_tkeep: intbv[width/8] out, shared.
+        m_tlast: bool out, shared.
+        m_tvalid: intbv[subscribers] out, one bit per subscriber.
+        m_tready: intbv[subscribers] in, one bit per subscriber.
+        error_count: intbv[16] out, protocol errors seen (saturating).
+        width: Bus width in bits (8, 32, 64).
+        subscribers: Number of subscriber converters (≥ 1).
+    """
+    geometry = BusGeometry(width)
+    lanes = geometry.lanes
+    header_beats = geometry.header_beats
+    last_header_beat = header_beats - 1
+    whole = FLAG_START | FLAG_END
+    full = 2**lanes - 1
+    t_state = enum("HEADER", "ROUTE", "DROP", "EMPTY")  # VHDL: no process may share these names
+
+    state = Signal(t_state.HEADER)
+    beat = Signal(intbv(0, min=0, max=max(header_beats, 2)))
+    stored = Signal(intbv(0)[8 * HEADER_BYTES :])
+    word = Signal(intbv(0)[8 * HEADER_BYTES :])
+    target = Signal(intbv(0, min=0, max=max(subscribers, 2)))
+    expected = Signal(intbv(0)[32:])
+    received = Signal(intbv(0)[33:])
+    beat_bytes = Signal(intbv(0, min=0, max=lanes + 1))
+    errors = Signal(intbv(0)[ERROR_COUNT_BITS:])
+
+    @always_comb
+    def assemble_header():
+        # The header so far, with this beat's bytes in their place.
+        assembled = intbv(0)[8 * HEADER_BYTES :]
+        assembled[:] = stored
+        for index in range(header_beats):
+            if beat == index:
+                assembled[(index + 1) * width : index * width] = s_tdata
+        word.next = assembled
+
+    @always_comb
+    def count_lanes():
+        total = 0
+        for lane in range(lanes):
+            if s_tkeep[lane]:
+                total += 1
+        beat_bytes.next = total
+
+    @always_comb
+    def drive_outputs():
+        m_tdata.next = s_tdata
+        if state == t_state.EMPTY:
+            m_tkeep.next = 0
+            m_tlast.next = 1
+        else:
+            m_tkeep.next = s_tkeep
+            m_tlast.next = s_tlast
+        valid = intbv(0)[subscribers:]
+        for index in range(subscribers):
+            if target == index:
+                if state == t_state.ROUTE:
+                    valid[index] = s_tvalid
+                elif state == t_state.EMPTY:
+                    valid[index] = 1
+        m_tvalid.next = valid
+        if state == t_state.ROUTE:
+            s_tready.next = m_tready[target]
+        elif state == t_state.EMPTY:
+            s_tready.next = 0
+        else:
+            s_tready.next = 1
+
+    @always_comb
+    def report():
+        error_count.next = errors
+
+    @always_seq(clk.posedge, reset=rst)
+    def parse():
+        fault = False
+        if state == t_state.HEADER:
+            if s_tvalid and s_tkeep != full:
+                # Header bytes missing: a truncated chunk.
+                fault = True
+                stored.next = 0
+                beat.next = 0
+                if not s_tlast:
+                    state.next = t_state.DROP
+            elif s_tvalid:
+                if beat == last_header_beat:
+                    stored.next = 0
+                    beat.next = 0
+                    expected.next = word[64:32]
+                    received.next = 0
+                    good = word[16:0] < subscribers and word[32:16] == whole
+                    if good:
+                        target.next = word[16:0]
+                    if s_tlast:
+                        # A chunk of header only: fine for an empty message.
+                        if good and word[64:32] == 0:
+                            state.next = t_state.EMPTY
+                        else:
+                            fault = True
+                    elif good:
+                        state.next = t_state.ROUTE
+                    else:
+                        fault = True
+                        state.next = t_state.DROP
+                elif s_tlast:
+                    fault = True
+                    stored.next = 0
+                    beat.next = 0
+                else:
+                    stored.next = word
+                    beat.next = beat + 1
+        elif state == t_state.ROUTE:
+            if s_tvalid and m_tready[target]:
+                if s_tlast:
+                    state.next = t_state.HEADER
+                    if received + beat_bytes != expected:
+                        fault = True
+                else:
+                    received.next = received + beat_bytes
+        elif state == t_state.DROP:
+            if s_tvalid and s_tlast:
+                state.next = t_state.HEADER
+        elif m_tready[target]:
+            state.next = t_state.HEADER
+        if fault and errors != 2**ERROR_COUNT_BITS - 1:
+            errors.next = errors + 1
+
+    return assemble_header, count_lanes, drive_outputs, report, parse

@@ -1,0 +1,83 @@
+"""A scheduler whose inputs are schedulers (paper §7.2.5), with the same interface as one.
+
+Child c offers the channel to one of its inputs; the parent sees its input c requesting while
+child c offers, with the offered input's `tlast`; the parent's grant of c is child c's `ready`,
+so a child counts a beat (and its `tlast`) only when it really moved. The composite's grant is
+the granted child's grant, its offer the offered child's offer.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+from myhdl import ConcatSignal, Signal, always_comb, block, intbv
+
+from rfc.lib.schedulers.spec import CompositionSpec
+
+#: A block function with the scheduler ports (clk, rst, request, last, ready, offer, grant).
+SchedulerBlock = Callable[..., Any]
+
+
+@block
+def composition(clk, rst, request, last, ready, offer, grant, spec: CompositionSpec, build) -> Any:
+    """The composite of `spec`; `build(spec)` gives the block of a child or of the parent.
+
+    Ports are those of `statechart`: request and last (intbv[N] in), ready (in), offer and
+    grant (intbv[N] out).
+    """
+    count = len(spec.children)
+    parent_offer = Signal(intbv(0)[count:])
+    parent_grant = Signal(intbv(0)[count:])
+    wants = [Signal(bool(0)) for _ in range(count)]
+    ends = [Signal(bool(0)) for _ in range(count)]
+    gated_offers, grants, parts = [], [], []
+    for c, (child, start) in enumerate(zip(spec.children, spec.offsets, strict=True)):
+        sub_request = request(start + child.n, start)
+        sub_last = last(start + child.n, start)
+        offered = Signal(intbv(0)[child.n :])
+        granted = Signal(intbv(0)[child.n :])
+        gated = Signal(intbv(0)[child.n :])
+        parts.append(
+            build(child)(clk, rst, sub_request, sub_last, parent_grant(c), offered, granted, child)
+        )
+        parts.append(child_port(offered, sub_last, parent_offer(c), wants[c], ends[c], gated))
+        gated_offers.append(gated)
+        grants.append(granted)
+    parent_request = ConcatSignal(*reversed(wants))
+    parent_last = ConcatSignal(*reversed(ends))
+    parts.append(
+        build(spec.parent)(
+            clk, rst, parent_request, parent_last, ready, parent_offer, parent_grant, spec.parent
+        )
+    )
+    parts.append(join_vector(ConcatSignal(*reversed(gated_offers)), offer))
+    parts.append(join_vector(ConcatSignal(*reversed(grants)), grant))
+    return parts
+
+
+@block
+def child_port(offered: Any, last: Any, chosen: Any, wants: Any, ends: Any, gated: Any):
+    """What the parent sees of one child, and the child's offer once the parent chose it."""
+
+    @always_comb
+    def summarize():
+        wants.next = offered != 0
+        ends.next = (offered & last) != 0
+        if chosen:
+            gated.next = offered
+        else:
+            gated.next = 0
+
+    return summarize
+
+
+@block
+def join_vector(joined: Any, port: Any):
+    """Drive an output port from the children's concatenated vectors."""
+
+    @always_comb
+    def drive():
+        port.next = joined
+
+    return drive

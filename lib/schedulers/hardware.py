@@ -1,0 +1,93 @@
+"""Build the hardware of any scheduler spec, and wrap it as a top-level entity.
+
+`scheduler_block(spec)` returns the block function for a `SchedulerSpec` (the statechart with
+its algorithm's parts) or a `CompositionSpec`; all share the ports (clk, rst, request, last,
+ready, offer, grant, spec). `scheduler_top` is the entity rfc generates: clk, rst, request,
+last, ready in; grant out (docs/schedulers.md, "Interface").
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from myhdl import ResetSignal, Signal, block, intbv
+
+from rfc.lib.schedulers.composition import SchedulerBlock, composition
+from rfc.lib.schedulers.edf import loedf_hardware, roedf_hardware
+from rfc.lib.schedulers.fixed_priority import fixed_priority_hardware
+from rfc.lib.schedulers.lru import lru_hardware
+from rfc.lib.schedulers.lst import lst_hardware
+from rfc.lib.schedulers.spec import Algorithm, AnySchedulerSpec, CompositionSpec, SchedulerSpec
+from rfc.lib.schedulers.statechart import PolicyHardware, statechart
+from rfc.toolchain import start_new_design
+
+
+def policy_hardware(spec: SchedulerSpec) -> PolicyHardware:
+    """The Compute Condition and Set Grant parts of `spec`'s algorithm."""
+    algorithm = spec.algorithm
+    if algorithm in (Algorithm.NPFP, Algorithm.PFP):
+        return fixed_priority_hardware(preemptive=algorithm is Algorithm.PFP)
+    if algorithm is Algorithm.LRU:
+        return lru_hardware(spec)
+    if algorithm is Algorithm.LOEDF:
+        return loedf_hardware(spec)
+    if algorithm is Algorithm.ROEDF:
+        return roedf_hardware(spec)
+    return lst_hardware(spec)
+
+
+def scheduler_block(spec: AnySchedulerSpec) -> SchedulerBlock:
+    """The block function of `spec`.
+
+    Call it with (clk, rst, request, last, ready, offer, grant, spec).
+    """
+    return composite_scheduler if isinstance(spec, CompositionSpec) else single_scheduler
+
+
+@block
+def single_scheduler(
+    clk: Any, rst: Any, request: Any, last: Any, ready: Any, offer: Any, grant: Any, spec: Any
+) -> Any:
+    """One algorithm: the statechart with the algorithm's parts."""
+    return statechart(clk, rst, request, last, ready, offer, grant, spec, policy_hardware(spec))
+
+
+@block
+def composite_scheduler(
+    clk: Any, rst: Any, request: Any, last: Any, ready: Any, offer: Any, grant: Any, spec: Any
+) -> Any:
+    """A composition of schedulers."""
+    return composition(clk, rst, request, last, ready, offer, grant, spec, scheduler_block)
+
+
+def scheduler_top(spec: AnySchedulerSpec) -> SchedulerBlock:
+    """The block function of the generated entity.
+
+    Its ports are (clk, rst, request, last, ready, grant) only: the spec is baked in and the
+    offer kept inside (MyHDL takes only signals as ports of the top).
+    """
+
+    @block
+    def scheduler(clk: Any, rst: Any, request: Any, last: Any, ready: Any, grant: Any) -> Any:
+        offer = Signal(intbv(0)[spec.n :])
+        return scheduler_block(spec)(clk, rst, request, last, ready, offer, grant, spec)
+
+    return scheduler
+
+
+def top_instance(spec: AnySchedulerSpec) -> Any:
+    """An elaborated `scheduler_top` with fresh port signals (for conversion or simulation)."""
+    start_new_design()
+    return scheduler_top(spec)(*top_ports(spec))
+
+
+def top_ports(spec: AnySchedulerSpec) -> tuple[Any, ...]:
+    """Fresh (clk, rst, request, last, ready, grant) signals of the right widths."""
+    return (
+        Signal(bool(0)),
+        ResetSignal(1, active=1, isasync=False),
+        Signal(intbv(0)[spec.n :]),
+        Signal(intbv(0)[spec.n :]),
+        Signal(bool(1)),
+        Signal(intbv(0)[spec.n :]),
+    )

@@ -1,0 +1,151 @@
+"""Cycle-exact, vectorized models of the schedulers: the co-simulation reference and DSE engine.
+
+A model simulates R independent replicates at once. Per clock cycle::
+
+    model = make_model("LOEDF", n=8, transfer=T, deadline=D, batch=R)   # T, D: [N] or [R, N]
+    grant = model.step(request, last)            # bool[R, N] each; returns int[R], -1 = none
+
+`step` gives the same grant on the same cycle as the generated hardware (R = 1 is the
+co-simulation reference). `ready` (bool[R]) models a channel that stalls. Compositions are
+models too (`compose_models`, or `model_of` a `CompositionSpec`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+import numpy.typing as npt
+
+from rfc.errors import RfcError
+from rfc.lib.schedulers.model.composition import CompositionModel, SchedulerModel
+from rfc.lib.schedulers.model.policies import (
+    FixedPriority,
+    LatencyOptimizedEdf,
+    LeastRecentlyUsed,
+    LeastSlackTime,
+    ResourceOptimizedEdf,
+)
+from rfc.lib.schedulers.model.statechart import Policy, StatechartModel
+from rfc.lib.schedulers.spec import (
+    DEFAULT_IDLE,
+    DEFAULT_TRANSFER,
+    Algorithm,
+    AnySchedulerSpec,
+    CompositionSpec,
+    SchedulerSpec,
+    check_counter_bits,
+    check_inputs,
+    default_counter_bits,
+    parse_algorithm,
+)
+
+__all__ = [
+    "CompositionModel",
+    "SchedulerModel",
+    "StatechartModel",
+    "compose_models",
+    "make_model",
+    "model_of",
+]
+
+ArrayLike = int | Sequence[int] | npt.NDArray[np.integer]
+
+
+def _timing(value: ArrayLike, n: int, batch: int, name: str) -> npt.NDArray[np.int64]:
+    array = np.asarray(value, dtype=np.int64)
+    try:
+        array = np.broadcast_to(array, (batch, n)).copy()
+    except ValueError:
+        raise RfcError(
+            f"{name} has shape {array.shape}; expected a scalar, [N] = [{n}] or "
+            f"[R, N] = [{batch}, {n}]"
+        ) from None
+    if array.size and array.min() < 1:
+        raise RfcError(f"{name} must be at least 1 cycle, got {array.min()}")
+    return array
+
+
+def _policy(algorithm: Algorithm, n: int, batch: int, transfer, deadline, bits: int) -> Policy:
+    if algorithm in (Algorithm.NPFP, Algorithm.PFP):
+        return FixedPriority(preemptive=algorithm is Algorithm.PFP)
+    if algorithm is Algorithm.LRU:
+        return LeastRecentlyUsed(n, batch)
+    if algorithm is Algorithm.LOEDF:
+        return LatencyOptimizedEdf(deadline, bits)
+    if algorithm is Algorithm.ROEDF:
+        return ResourceOptimizedEdf(deadline, bits)
+    return LeastSlackTime(transfer, deadline, bits)
+
+
+def make_model(
+    algorithm: str | Algorithm,
+    n: int,
+    transfer: ArrayLike = DEFAULT_TRANSFER,
+    deadline: ArrayLike | None = None,
+    *,
+    batch: int = 1,
+    counter_bits: int | None = None,
+) -> StatechartModel:
+    """Build the model of one scheduler on `batch` replicates.
+
+    Args:
+        algorithm: One of LRU, NPFP, PFP, ROEDF, LOEDF, LST (any case).
+        n: Number of inputs.
+        transfer: T_i in beats: a scalar, [N], or [R, N] (per replicate).
+        deadline: D_i in cycles, shaped likewise; by default T_i + 100.
+        batch: Number of replicates R.
+        counter_bits: Width of the deadline/slack counters (as in the hardware); by default the
+            width `SchedulerSpec.create` would choose for the largest values.
+
+    Raises:
+        RfcError: Unknown algorithm, or timing values out of range.
+    """
+    chosen = parse_algorithm(algorithm)
+    check_inputs(n)
+    transfers = _timing(transfer, n, batch, "the transfer time")
+    if deadline is None:
+        deadline = transfers + DEFAULT_IDLE
+    deadlines = _timing(deadline, n, batch, "the deadline")
+    flat_t, flat_d = [int(transfers.max())], [int(deadlines.max())]
+    bits = default_counter_bits(flat_t, flat_d) if counter_bits is None else counter_bits
+    check_counter_bits(bits, flat_t, flat_d)
+    policy = _policy(chosen, n, batch, transfers, deadlines, bits)
+    return StatechartModel(policy, n, batch, transfers, deadlines)
+
+
+def compose_models(
+    parent: str | Algorithm,
+    children: Sequence[SchedulerModel],
+    *,
+    counter_bits: int | None = None,
+) -> CompositionModel:
+    """Compose child models under a `parent` algorithm (as `CompositionSpec.create` does).
+
+    The parent's T and D for child c are, per replicate, the child's largest T and smallest D.
+    """
+    if len(children) < 2:
+        raise RfcError(f"a composition needs at least two schedulers, got {len(children)}")
+    transfer = np.stack([child.transfer.max(axis=1) for child in children], axis=1)
+    deadline = np.stack([child.deadline.min(axis=1) for child in children], axis=1)
+    batch = children[0].batch
+    top = make_model(
+        parent, len(children), transfer, deadline, batch=batch, counter_bits=counter_bits
+    )
+    return CompositionModel(top, children)
+
+
+def model_of(spec: AnySchedulerSpec, batch: int = 1) -> SchedulerModel:
+    """The model of a generated scheduler (or composition), with its exact constants."""
+    if isinstance(spec, CompositionSpec):
+        children = [model_of(child, batch) for child in spec.children]
+        return CompositionModel(model_of(spec.parent, batch), children)
+    assert isinstance(spec, SchedulerSpec)
+    return make_model(
+        spec.algorithm,
+        spec.n,
+        spec.transfer,
+        spec.deadline,
+        batch=batch,
+        counter_bits=spec.counter_bits,
+    )

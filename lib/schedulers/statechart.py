@@ -1,0 +1,241 @@
+"""The adaptable statechart (paper Fig. 5): the static part every scheduler shares.
+
+States: IDLE (no holder), GRANT (a holder; it is granted on cycles it requests and the channel
+is ready) and COMPUTE (the priority table is being updated; no grant — only algorithms whose
+Compute Condition needs it, ROEDF, enter it). The static part owns the holder register, the
+grant, `tlast` detection and arrival detection; each algorithm supplies its Compute Condition
+(the priority table and the keys it exposes) and its Set Grant rule (when to pick the most
+urgent candidate again) through a `PolicyHardware`. docs/schedulers.md gives the cycle
+semantics; `rfc.lib.schedulers.model.statechart` is the same machine in NumPy.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+from myhdl import Signal, always, always_comb, block, intbv
+
+from rfc.lib.schedulers.priority_tree import index_bits, priority_tree
+from rfc.lib.schedulers.spec import SchedulerSpec
+
+
+@dataclass(frozen=True)
+class Lines:
+    """The static part's signals a policy reads (each an intbv[N] unless said otherwise).
+
+    Attributes:
+        request: The inputs' `tvalid`.
+        candidates: Requesters that may be granted next (the one completing excluded).
+        pending: Inputs with a message in progress (arrival-tracking policies only).
+        arrival: Inputs whose message arrives this cycle (arrival-tracking policies only).
+        grant: The granted input (its beat moves this cycle).
+        complete: The granted input when its beat carries `tlast`.
+        hold: The holder, one-hot (kept through a pause).
+        best: Index of the most urgent candidate (the tree's root).
+        best_valid: Bool, some candidate exists.
+        best_key: The tree root's key.
+        selected: Bool, the holder register takes `best` at this clock edge.
+    """
+
+    request: Any
+    candidates: Any
+    pending: Any
+    arrival: Any
+    grant: Any
+    complete: Any
+    hold: Any
+    best: Any
+    best_valid: Any
+    best_key: Any
+    selected: Any
+
+
+@dataclass(frozen=True)
+class PolicyHardware:
+    """An algorithm's parts of the statechart.
+
+    Attributes:
+        preemptive: Set Grant runs every cycle (else only when idle, at `tlast`, after COMPUTE).
+        tracks_arrivals: The static part must provide `pending` and `arrival`.
+        key_bits: Width of the keys the tree compares (0: index order only).
+        modular: The keys wrap around (compared on a circle).
+        pauses: The policy drives `pause` (enter or stay in COMPUTE).
+        table: ``table(clk, rst, lines, keys, pause, spec)`` building the Compute Condition
+            block: it drives `keys` (and `pause` when `pauses`); None when there is no table.
+    """
+
+    preemptive: bool
+    tracks_arrivals: bool
+    key_bits: int
+    modular: bool
+    pauses: bool
+    table: Callable[..., Any] | None
+
+
+@block
+def statechart(
+    clk: Any,
+    rst: Any,
+    request: Any,
+    last: Any,
+    ready: Any,
+    offer: Any,
+    grant: Any,
+    spec: SchedulerSpec,
+    policy: PolicyHardware,
+) -> Any:
+    """One scheduler: the static states plus `policy`'s Compute Condition and Set Grant.
+
+    Args:
+        clk: Clock.
+        rst: Synchronous reset, active high.
+        request: intbv[N] in, `tvalid` of each input.
+        last: intbv[N] in, `tlast` of each input.
+        ready: Bool in, the channel accepts a beat this cycle.
+        offer: intbv[N] out, the input offered the channel (grant before `ready`).
+        grant: intbv[N] out, one-hot or zero: drives the inputs' `tready`.
+        spec: Generation-time constants.
+        policy: The algorithm's parts.
+    """
+    n = spec.n
+    owner = Signal(intbv(0)[index_bits(n) :])
+    owner_valid = Signal(bool(0))
+    computing = Signal(bool(0))
+    hold = Signal(intbv(0)[n:])
+    candidates = Signal(intbv(0)[n:])
+    complete = Signal(intbv(0)[n:])
+    done = Signal(bool(0))
+    seen = Signal(intbv(0)[n:])
+    pending = Signal(intbv(0)[n:])
+    arrival = Signal(intbv(0)[n:])
+    best = Signal(intbv(0)[index_bits(n) :])
+    best_valid = Signal(bool(0))
+    best_key = Signal(intbv(0)[max(policy.key_bits, 1) :])
+    reselect = Signal(bool(0))
+    selected = Signal(bool(0))
+    pause = Signal(bool(0))
+    keys = [Signal(intbv(0)[policy.key_bits :]) for _ in range(n)] if policy.key_bits else []
+    lines = Lines(
+        request,
+        candidates,
+        pending,
+        arrival,
+        grant,
+        complete,
+        hold,
+        best,
+        best_valid,
+        best_key,
+        selected,
+    )
+    preemptive = policy.preemptive
+
+    @always_comb
+    def decode_holder():
+        for i in range(n):
+            hold.next[i] = owner_valid and owner == i
+
+    @always_comb
+    def offer_channel():
+        if computing:
+            offer.next = 0
+        else:
+            offer.next = hold & request
+
+    @always_comb
+    def offer_always():
+        offer.next = hold & request
+
+    @always_comb
+    def grant_channel():
+        if ready:
+            grant.next = offer
+        else:
+            grant.next = 0
+
+    @always_comb
+    def detect_tlast():
+        complete.next = grant & last
+        done.next = (grant & last) != 0
+
+    @always_comb
+    def exclude_completing():
+        candidates.next = request & ~(grant & last)
+
+    if policy.pauses:
+
+        @always_comb
+        def decide():
+            reselect.next = preemptive or computing or done or not owner_valid
+            selected.next = (preemptive or computing or done or not owner_valid) and not pause
+
+        @always(clk.posedge)
+        def set_grant():
+            if rst:
+                owner.next = 0
+                owner_valid.next = 0
+                computing.next = 0
+            elif pause:
+                computing.next = 1
+                if done:
+                    owner_valid.next = 0
+            elif reselect:
+                computing.next = 0
+                owner.next = best
+                owner_valid.next = best_valid
+
+    else:
+
+        @always_comb
+        def decide():
+            selected.next = preemptive or done or not owner_valid
+
+        @always(clk.posedge)
+        def set_grant():
+            if rst:
+                owner.next = 0
+                owner_valid.next = 0
+            elif selected:
+                owner.next = best
+                owner_valid.next = best_valid
+
+    parts = [
+        decode_holder,
+        offer_channel if policy.pauses else offer_always,
+        grant_channel,
+        detect_tlast,
+        exclude_completing,
+        decide,
+        set_grant,
+        priority_tree(
+            candidates, keys, best, best_valid, best_key, n, policy.key_bits, policy.modular
+        ),
+    ]
+    if policy.table is not None:
+        parts.append(policy.table(clk, rst, lines, keys, pause, spec))
+    if policy.tracks_arrivals:
+        parts.append(arrival_detector(clk, rst, request, complete, seen, pending, arrival))
+    return parts
+
+
+@block
+def arrival_detector(
+    clk: Any, rst: Any, request: Any, complete: Any, seen: Any, pending: Any, arrival: Any
+):
+    """A message arrives when `tvalid` rises, or stays high after the previous `tlast`."""
+
+    @always_comb
+    def classify():
+        pending.next = request | seen
+        arrival.next = request & ~seen
+
+    @always(clk.posedge)
+    def remember():
+        if rst:
+            seen.next = 0
+        else:
+            seen.next = (request | seen) & ~complete
+
+    return classify, remember

@@ -1,0 +1,221 @@
+"""The processor side of a system as a state machine, free of any I/O (sans-IO).
+
+`Runtime` takes messages from topics (`offer`), hands the PS→PL DMA its next chunk
+(`next_transfer`, chosen by the software scheduler among the per-subscriber queues), and takes
+PL→PS transfers back (`receive`, reassembled by publisher id). ROS-SW accelerators run inside
+it. Whatever drives it — bag replay against a software model or a GHDL simulation, or the ROS 2
+node on a Zynq — supplies the time stamps and moves the bytes; so every transport shares one
+routing, one scheduler and one account.
+
+Time stamps: a message keeps the stamp of the input it came from. Outputs of the logic get the
+stamp the driver passes to `receive` (the replay: the stamp of the newest input taken so far).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass
+from enum import StrEnum
+
+from rfc.errors import RfcError
+from rfc.messages.codec import FrameError
+from rfc.runtime.account import Account
+from rfc.runtime.plan import Route, RuntimePlan, ToLogic, ToSoftware, ToTopic
+from rfc.runtime.protocol import Chunk, ProtocolError, Reassembler, message_chunk
+from rfc.runtime.queues import Overflow
+from rfc.runtime.scheduling import PerSubscriberLRU, SharedFifo, SoftwareScheduler
+
+#: Default depth of each callback queue (a ROS subscription's usual queue size).
+DEFAULT_DEPTH = 10
+
+
+class QueuePolicy(StrEnum):
+    """How the processor queues messages for the PS→PL DMA (paper Fig. 4)."""
+
+    PER_SUBSCRIBER = "per-subscriber"
+    """One bounded queue per subscriber, served least recently used first (rfc's default)."""
+    SHARED_FIFO = "shared-fifo"
+    """One bounded queue for every subscriber, served in arrival order (ROS's default)."""
+
+
+@dataclass(frozen=True)
+class QueueConfig:
+    """The callback queues: policy, depth (per queue, or of the shared one) and overflow."""
+
+    policy: QueuePolicy = QueuePolicy.PER_SUBSCRIBER
+    depth: int = DEFAULT_DEPTH
+    overflow: Overflow = Overflow.DROP_OLDEST
+
+
+@dataclass(frozen=True)
+class Published:
+    """A message the system publishes on a ROS topic."""
+
+    topic: str
+    message: str
+    stamp: int
+    data: bytes
+
+
+@dataclass(frozen=True)
+class Queued:
+    """A message waiting for the PS→PL DMA: its bytes, stamp and when it was queued."""
+
+    data: bytes
+    stamp: int
+    queued_at: int
+
+
+class Runtime:
+    """Queues, software scheduler, reassembly, software accelerators and the account.
+
+    Args:
+        plan: The routes of the system.
+        queues: The callback queue configuration.
+    """
+
+    def __init__(self, plan: RuntimePlan, queues: QueueConfig | None = None) -> None:
+        self.plan = plan
+        self.queues = queues or QueueConfig()
+        ids = [c.id for c in plan.logic_inputs]
+        self.scheduler: SoftwareScheduler[Queued] = (
+            PerSubscriberLRU(dict.fromkeys(ids, self.queues.depth), self.queues.overflow)
+            if self.queues.policy is QueuePolicy.PER_SUBSCRIBER
+            else SharedFifo(ids, self.queues.depth, self.queues.overflow)
+        )
+        self.account = Account()
+        self.software = plan.software_accelerators()
+        self._reassembler = Reassembler()
+        self._inputs = {}
+        for topic_input in plan.inputs:
+            self._inputs.setdefault(topic_input.topic, []).append(topic_input)
+
+    @property
+    def topics(self) -> tuple[str, ...]:
+        """The topics the system subscribes to."""
+        return tuple(self._inputs)
+
+    def offer(self, topic: str, data: bytes, stamp: int, now: int = 0) -> list[Published]:
+        """A message arrived on a subscribed topic.
+
+        Args:
+            topic: Its topic (one the system subscribes to).
+            data: Its serialized bytes.
+            stamp: Its time stamp in nanoseconds, inherited by what it causes.
+            now: The driver's clock, recorded for queue-age measurements.
+
+        Returns:
+            What software parts published in response.
+        """
+        self.account.received[topic] += 1
+        published: list[Published] = []
+        for topic_input in self._inputs[topic]:
+            self._deliver(topic_input.routes, data, stamp, now, published)
+        return published
+
+    def next_transfer(self) -> tuple[Chunk, Queued] | None:
+        """The chunk the software scheduler sends to the logic next, if any message waits."""
+        chosen = self.scheduler.pop()
+        if chosen is None:
+            return None
+        subscriber, queued = chosen
+        self.account.to_logic[self.plan.subscriber_names[subscriber]] += 1
+        return message_chunk(subscriber, queued.data), queued
+
+    def waiting(self) -> int:
+        """Messages waiting in the callback queues."""
+        return len(self.scheduler)
+
+    def receive(self, transfer: bytes, stamp: int, now: int = 0) -> list[Published]:
+        """A PL→PS DMA transfer arrived; route the message it completes, if any."""
+        try:
+            chunk = Chunk.from_bytes(transfer)
+        except ProtocolError as error:
+            self.account.drop("logic", f"protocol:{error.reason}")
+            return []
+        routes = self.plan.logic_outputs.get(chunk.id)
+        if routes is None:
+            self.account.drop("logic", "protocol:id")
+            return []
+        where = self.plan.publisher_names[chunk.id]
+        try:
+            message = self._reassembler.feed(chunk)
+        except ProtocolError as error:
+            self.account.drop(where, f"protocol:{error.reason}")
+            return []
+        if message is None:
+            return []
+        self.account.from_logic[where] += 1
+        published: list[Published] = []
+        self._deliver(routes, message, stamp, now, published)
+        return published
+
+    def in_flight(self) -> bool:
+        """Whether a PL→PS message has started and not finished."""
+        return bool(self._reassembler.pending())
+
+    def finish(self) -> None:
+        """End the run: count what is still unfinished or waiting as dropped."""
+        while (left := self.scheduler.pop()) is not None:
+            self.account.drop(self.plan.subscriber_names[left[0]], "unsent")
+        for ident in self._reassembler.pending():
+            self.account.drop(self.plan.publisher_names[ident], "protocol:unfinished")
+        for name, accelerator in self.software.items():
+            if accelerator.waiting():
+                self.account.drop(name, "unmatched", accelerator.waiting())
+
+    def _deliver(
+        self, routes: Iterable[Route], data: bytes, stamp: int, now: int, out: list[Published]
+    ) -> None:
+        for route in routes:
+            if isinstance(route, ToLogic):
+                dropped = self.scheduler.push(route.subscriber, Queued(data, stamp, now))
+                if dropped is not None:
+                    self.account.drop(self.plan.subscriber_names[dropped.subscriber], "overflow")
+            elif isinstance(route, ToTopic):
+                self._publish(route, data, stamp, out)
+            else:
+                self._run_software(route, data, stamp, now, out)
+
+    def _publish(self, route: ToTopic, data: bytes, stamp: int, out: list[Published]) -> None:
+        try:
+            shaped = route.shaper.shape(data)
+        except FrameError:
+            self.account.drop(route.publisher, "malformed")
+            return
+        self.account.published[route.topic] += 1
+        out.append(Published(route.topic, route.message, stamp, shaped))
+
+    def _run_software(
+        self, route: ToSoftware, data: bytes, stamp: int, now: int, out: list[Published]
+    ) -> None:
+        types = self.plan.types
+        try:
+            message = types.deserialize(route.shaper.shape(data), route.message)
+        except (FrameError, RfcError):
+            self.account.drop(route.name, "malformed")
+            return
+        accelerator = self.software[route.block]
+        if accelerator.take(route.port, message):
+            self.account.drop(route.name, "superseded")
+        if not accelerator.ready():
+            return
+        self.account.software_calls[route.block] += 1
+        results = accelerator.fire()
+        port_routes = self.plan.software_outputs[route.block]
+        for routes, result, message_type in zip(
+            port_routes, results, accelerator.output_types, strict=True
+        ):
+            if result is not None:
+                self._deliver(
+                    routes, self._serialize(route.block, result, message_type), stamp, now, out
+                )
+
+    def _serialize(self, block: str, message: object, message_type: str) -> bytes:
+        try:
+            return self.plan.types.serialize(message, message_type)
+        except Exception as exc:  # rosbags refused what the user's function built
+            raise RfcError(
+                f"ROS-SW accelerator '{block}' returned a message rosbags cannot serialize "
+                f"as {message_type}: {type(exc).__name__}: {exc}"
+            ) from None

@@ -1,0 +1,159 @@
+"""The runtime loop inside a cocotb simulation of the whole programmable logic (GHDL).
+
+This module runs in the simulator's Python, started by `rfc.runtime.hardware`. It reads the
+job (a JSON file named by ``RFC_SIM_JOB``), compiles the spec, and replays the bag: messages
+arrive at their recorded times on the simulated clock, wait in the processor's callback queues,
+and go to the logic one DMA transfer at a time through a cocotbext-axi source on the PS→PL
+stream (with random idle cycles); a sink on the PL→PS stream (with random backpressure) hands
+each transfer to the runtime, which reassembles and routes it. Outputs of the logic take the
+stamp of the newest input offered so far.
+
+Idle time is skipped (`rfc.runtime.arrivals`): when nothing waits, nothing moves and the logic
+has been quiet for the job's drain window, the next message arrives at once. After the last
+message the run ends once the system is idle the same way. Results go back through files: the
+published messages (`rfc.runtime.records`), the account as JSON, and the progress (messages
+offered so far).
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+import os
+import random
+from itertools import cycle
+from pathlib import Path
+
+import cocotb
+from cocotb.clock import Clock
+from cocotb.triggers import ClockCycles, Event, Timer
+from cocotbext.axi import AxiStreamBus, AxiStreamSink, AxiStreamSource
+
+from rfc.driver import compile_spec
+from rfc.messages.rosbags_adapter import message_types, read_bag
+from rfc.runtime.arrivals import IDLE_FRACTION, ArrivalClock
+from rfc.runtime.core import Published, QueueConfig, QueuePolicy, Runtime
+from rfc.runtime.plan import RuntimePlan
+from rfc.runtime.records import write_records
+
+
+class _Replay:
+    def __init__(self, dut: object, job: dict, runtime: Runtime) -> None:
+        self.job = job
+        self.runtime = runtime
+        self.clock = dut.aclk
+        self.period_ns = 1000.0 / job["clock_mhz"]
+        self.stamp = 0
+        self.published: list[Published] = []
+        self.work = Event()
+        self.sending = False
+        self.received_transfers = 0
+        self.source = AxiStreamSource(
+            AxiStreamBus.from_prefix(dut, "s_axis_mm2s"),
+            dut.aclk,
+            dut.aresetn,
+            reset_active_level=False,
+        )
+        self.sink = AxiStreamSink(
+            AxiStreamBus.from_prefix(dut, "m_axis_s2mm"),
+            dut.aclk,
+            dut.aresetn,
+            reset_active_level=False,
+        )
+        chance = random.Random(job["seed"])
+        pattern = [chance.random() < IDLE_FRACTION for _ in range(1021)]
+        self.source.set_pause_generator(cycle(pattern))
+        self.sink.set_pause_generator(cycle(pattern[::-1]))
+
+    def cycles(self) -> int:
+        return int(cocotb.utils.get_sim_time("ns") / self.period_ns)
+
+    async def send(self) -> None:
+        """The PS→PL DMA: one transfer at a time, the software scheduler choosing."""
+        while True:
+            chosen = self.runtime.next_transfer()
+            if chosen is None:
+                self.sending = False
+                self.work.clear()
+                await self.work.wait()
+                continue
+            self.sending = True
+            chunk, _ = chosen
+            await self.source.send(chunk.to_bytes())
+            await self.source.wait()
+
+    async def receive(self) -> None:
+        """The PL→PS DMA: every transfer to the runtime."""
+        while True:
+            frame = await self.sink.recv()
+            self.received_transfers += 1
+            self.published += self.runtime.receive(bytes(frame.tdata), self.stamp, self.cycles())
+            if self.runtime.waiting():
+                self.work.set()
+
+    def busy(self) -> bool:
+        return (
+            self.sending
+            or self.runtime.waiting() > 0
+            or not self.source.idle()
+            or self.sink.active
+            or not self.sink.empty()
+            or self.runtime.in_flight()
+        )
+
+    async def run_until(self, due: int) -> None:
+        """Run the clock to cycle `due`, or less when the system falls idle before it."""
+        drain = self.job["drain_cycles"]
+        while self.cycles() < due:
+            before = self.received_transfers
+            step = min(drain, due - self.cycles())
+            await Timer(step * self.period_ns, unit="ns")
+            if not self.busy() and self.received_transfers == before:
+                return
+
+    async def replay(self) -> None:
+        types = message_types(
+            self.runtime.plan.types.middleware,
+            self.runtime.plan.types.distro,
+            tuple(str(p) for p in self.runtime.plan.design.project.msg_paths),
+            (self.job["bag"],),
+        )
+        progress = Path(self.job["progress"])
+        arrivals = ArrivalClock(self.job["clock_mhz"])
+        for count, message in enumerate(read_bag(self.job["bag"], types, self.job["topics"]), 1):
+            due = arrivals.due(message.timestamp_ns)
+            await self.run_until(due)
+            arrivals.offered(self.cycles(), due)
+            self.stamp = message.timestamp_ns
+            self.published += self.runtime.offer(
+                self.runtime_topic(message.topic), message.data, self.stamp, self.cycles()
+            )
+            self.work.set()
+            if count % 16 == 0:
+                progress.write_text(str(count))
+        await self.run_until(1 << 62)
+        self.runtime.finish()
+
+    def runtime_topic(self, topic: str) -> str:
+        return self.job["topic_names"].get(topic, topic)
+
+
+@cocotb.test()
+async def replay_through_logic(dut: object) -> None:
+    """Replay the job's bag through the simulated logic and write the results."""
+    for name in ("cocotb.echo_top", "cocotb"):
+        logging.getLogger(name).setLevel(logging.WARNING)
+    job = json.loads(Path(os.environ["RFC_SIM_JOB"]).read_text())
+    design = compile_spec(job["spec"])
+    queues = QueueConfig(QueuePolicy(job["policy"]), job["depth"])
+    replay = _Replay(dut, job, Runtime(RuntimePlan(design), queues))
+    cocotb.start_soon(Clock(dut.aclk, replay.period_ns, unit="ns").start())
+    dut.aresetn.value = 0
+    await ClockCycles(dut.aclk, 4)
+    dut.aresetn.value = 1
+    await ClockCycles(dut.aclk, 2)
+    cocotb.start_soon(replay.send())
+    cocotb.start_soon(replay.receive())
+    await replay.replay()
+    write_records(Path(job["results"]), replay.published)
+    Path(job["account"]).write_text(json.dumps(replay.runtime.account.to_json()))

@@ -1,0 +1,156 @@
+"""Simulated hardware: replay a bag through the whole programmable logic in GHDL.
+
+The logic comes from a *top provider* — by default `rfc.lower.hardware.simulation_top`, the
+whole-system generation — a function ``(design, directory) -> top`` whose result has ``top``
+(the entity), ``sources`` (VHDL in compile order) and ``bus_width``; the entity has the ports
+of the system contract (docs/runtime.md). The replay itself runs in the simulator
+(`rfc.runtime.cosim`); this module prepares its job, runs cocotb in a worker thread while
+reporting progress, and reads the results back.
+"""
+
+from __future__ import annotations
+
+import importlib
+import json
+import threading
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Protocol
+
+from rfc.errors import RfcError
+from rfc.ir.model import Design
+from rfc.runtime.account import Account
+from rfc.runtime.core import Published, QueueConfig
+from rfc.runtime.records import read_records
+from rfc.toolchain import CosimError, run_cocotb
+
+#: The top provider of the whole-system hardware generation.
+DEFAULT_TOP_PROVIDER = "rfc.lower.hardware:simulation_top"
+#: Cycles of silence after which the simulated system counts as idle.
+DEFAULT_DRAIN_CYCLES = 1000
+
+
+class SimulationTop(Protocol):
+    """The logic to simulate: its entity, its VHDL sources in compile order, its bus width."""
+
+    top: str
+    sources: list[Path]
+    bus_width: int
+
+
+TopProvider = Callable[[Design, Path], SimulationTop]
+
+
+def load_top_provider(reference: str = DEFAULT_TOP_PROVIDER) -> TopProvider:
+    """Import a top provider named ``module:function``.
+
+    Raises:
+        RfcError: It cannot be imported (for the default: this rfc has no whole-system
+            hardware generation yet).
+    """
+    module_name, _, function_name = reference.partition(":")
+    try:
+        provider = getattr(importlib.import_module(module_name), function_name)
+    except (ImportError, AttributeError):
+        if reference == DEFAULT_TOP_PROVIDER:
+            raise RfcError(
+                "simulating the logic needs the whole-system hardware generation "
+                f"({DEFAULT_TOP_PROVIDER}), which this installation of rfc lacks",
+                hint="switch the hardware accelerators to ROS-SW to replay in software",
+            ) from None
+        raise RfcError(
+            f"cannot import top provider '{reference}'",
+            hint="name it as module:function, importable from the current directory",
+        ) from None
+    return provider
+
+
+@dataclass(frozen=True)
+class SimulationRun:
+    """What a simulated replay produced."""
+
+    published: list[Published]
+    account: Account
+
+
+def simulate_with_ghdl(
+    design: Design,
+    bag: Path,
+    topic_names: Mapping[str, str],
+    top: SimulationTop,
+    workdir: Path,
+    *,
+    queues: QueueConfig,
+    drain_cycles: int = DEFAULT_DRAIN_CYCLES,
+    seed: int = 1,
+    progress: Callable[[int], None] | None = None,
+) -> SimulationRun:
+    """Replay `bag` through the design's logic in GHDL with the runtime in cocotb.
+
+    Args:
+        design: The holistic model (its spec file is compiled again in the simulator).
+        bag: The input bag.
+        topic_names: Bag topic → the spec's topic, for every topic to replay.
+        top: The logic's top-level (from a `TopProvider`).
+        workdir: Scratch folder (VHDL, simulation build, results).
+        queues: The processor's callback queues.
+        drain_cycles: Cycles of silence after which the system is idle.
+        seed: Seed of the random idle and backpressure.
+        progress: Called now and then with the number of messages offered so far.
+
+    Raises:
+        CosimError: The simulation failed (a bug in rfc or in the logic).
+    """
+    job = {
+        "spec": str(design.project.spec_file),
+        "bag": str(bag),
+        "topics": sorted(topic_names),
+        "topic_names": dict(topic_names),
+        "clock_mhz": design.project.clock_mhz,
+        "policy": queues.policy.value,
+        "depth": queues.depth,
+        "drain_cycles": drain_cycles,
+        "seed": seed,
+        "results": str(workdir / "published.rec"),
+        "account": str(workdir / "account.json"),
+        "progress": str(workdir / "progress"),
+    }
+    job_file = workdir / "job.json"
+    job_file.write_text(json.dumps(job, indent=1))
+    failure: list[BaseException] = []
+
+    def simulate() -> None:
+        try:
+            run_cocotb(
+                top.sources,
+                top.top,
+                "rfc.runtime.cosim",
+                workdir / "sim",
+                env={"RFC_SIM_JOB": str(job_file)},
+                seed=seed,
+            )
+        except BaseException as exc:  # handed to the caller's thread below
+            failure.append(exc)
+
+    worker = threading.Thread(target=simulate, name="rfc-ghdl")
+    worker.start()
+    while worker.is_alive():
+        worker.join(0.25)
+        if progress is not None and (text := _read(workdir / "progress")):
+            progress(int(text))
+    if failure:
+        raise failure[0]
+    if not Path(job["account"]).is_file():
+        raise CosimError(f"the simulation wrote no account (see {workdir / 'sim'})")
+    return SimulationRun(
+        list(read_records(Path(job["results"]))),
+        Account.from_json(json.loads(Path(job["account"]).read_text())),
+    )
+
+
+def _read(path: Path) -> str:
+    try:
+        return path.read_text().strip()
+    except OSError:
+        return ""

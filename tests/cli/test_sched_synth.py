@@ -1,0 +1,81 @@
+"""`rfc sched synth`: the JSON contract of DESIGN.md §9, caching, and user errors."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from tests.support.cli import run_rfc
+
+
+@pytest.fixture(scope="module")
+def module_cache(tmp_path_factory):
+    return tmp_path_factory.mktemp("synthesis-cache")
+
+
+@pytest.fixture(autouse=True)
+def private_cache(module_cache, monkeypatch):
+    monkeypatch.setenv("RFC_CACHE_DIR", str(module_cache))
+
+
+def synth_json(*args):
+    result = run_rfc("sched", "synth", *args, "--json")
+    assert result.returncode == 0, result.stderr
+    return json.loads(result.stdout)
+
+
+def test_json_has_the_contract_keys():
+    report = synth_json("--algorithm", "npfp", "--n", "4")
+    assert {"algorithm", "n", "lut", "ff", "grant_latency_cycles"} <= set(report)
+    assert report["algorithm"] == "NPFP"
+    assert report["n"] == 4
+    assert report["lut"] > 0
+    assert report["ff"] > 0
+    assert report["grant_latency_cycles"] == 1
+
+
+def test_a_second_run_comes_from_the_cache_with_the_same_figures(tmp_path, monkeypatch):
+    monkeypatch.setenv("RFC_CACHE_DIR", str(tmp_path / "fresh-cache"))
+    first = synth_json("-a", "PFP", "-n", "3", "-o", str(tmp_path / "hdl"))
+    second = synth_json("-a", "PFP", "-n", "3")
+    assert (first["cached"], second["cached"]) == (False, True)
+    assert (first["lut"], first["ff"]) == (second["lut"], second["ff"])
+    assert (tmp_path / "hdl" / "rfc_sched_pfp3.vhd").is_file()
+    assert (tmp_path / "hdl" / "rfc_sched_pfp3.v").is_file()
+
+
+def test_a_composition_is_a_scheduler_too():
+    report = synth_json("-a", "LRU(PFP,ROEDF:2)", "-n", "5")
+    assert report["algorithm"] == "LRU(PFP3,ROEDF2)"
+    assert report["lut"] > 0
+    # ROEDF (2) then LRU (1) for a request of the last input.
+    assert report["grant_latency_cycles"] == 3
+
+
+def test_table_output_names_the_figures():
+    result = run_rfc("sched", "synth", "-a", "NPFP", "-n", "4")
+    assert result.returncode == 0, result.stderr
+    assert "LUTs" in result.stdout
+    assert "grant latency" in result.stdout
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (("-a", "LOEFD", "-n", "4"), "did you mean 'LOEDF'"),
+        (("-a", "LST", "-n", "0"), "between 1 and 1024 inputs, not 0"),
+        (("-a", "LST", "-n", "4", "--deadline", "0"), "at least 1 cycle"),
+        (("-a", "LRU(LST:1,LST:1)", "-n", "4"), "must share the 4 inputs"),
+    ],
+)
+def test_bad_input_is_one_message_and_exit_1(args, message):
+    result = run_rfc("sched", "synth", *args, "--json")
+    assert result.returncode == 1
+    assert message in result.stderr
+    assert "Traceback" not in result.stderr
+    assert result.stdout == ""
+
+
+def test_missing_options_are_bad_usage():
+    assert run_rfc("sched", "synth", "-a", "LRU").returncode == 2

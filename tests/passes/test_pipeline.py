@@ -1,0 +1,66 @@
+"""The pipeline: its visible order, its passes' shape, and golden IR text after every pass.
+
+Regenerate the golden files (after checking the change is intended) with
+``RFC_UPDATE_GOLDEN=1 .venv/bin/pytest tests/passes/test_pipeline.py``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import os
+from pathlib import Path
+
+import pytest
+
+from rfc.ir.model import Stage
+from rfc.ir.text import format_ir
+from rfc.passes.pipeline import PIPELINE, describe, pass_names, run_pipeline
+from rfc.spec import load_spec
+
+ROOT = Path(__file__).resolve().parents[2]
+GOLDEN = Path(__file__).parent / "golden"
+SYSTEMS = {
+    "rotation_converter": ROOT / "examples" / "rotation_converter" / "RotationConverterNode.yaml",
+    "image_pipeline": ROOT / "examples" / "image_pipeline" / "ImagePipeline.yaml",
+}
+
+
+def test_the_pipeline_is_the_one_of_the_design():
+    assert describe() == (
+        "resolve-types → check-connections → expand-selections → flatten-messages → "
+        "derive-infrastructure"
+    )
+    assert pass_names()[0] == "parse"
+
+
+@pytest.mark.parametrize("step", PIPELINE, ids=lambda p: p.name)
+def test_each_pass_is_a_small_frozen_dataclass(step):
+    assert dataclasses.is_dataclass(step)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        step.name = "other"  # type: ignore[misc]
+
+
+def stages(path):
+    seen = []
+    run_pipeline(load_spec(path, path.name), after=lambda name, d: seen.append((name, d)))
+    return seen
+
+
+@pytest.mark.parametrize("system", SYSTEMS)
+def test_each_pass_moves_one_stage_on_and_leaves_its_input_alone(system):
+    seen = stages(SYSTEMS[system])
+    assert [d.stage for _, d in seen] == list(Stage)
+    texts = [format_ir(d) for _, d in seen]
+    again = [format_ir(d) for _, d in seen]  # designs are frozen: rendering twice agrees
+    assert texts == again
+    assert len(set(texts)) == len(texts)
+
+
+@pytest.mark.parametrize("system", SYSTEMS)
+def test_ir_text_after_each_pass_matches_golden(system):
+    for name, design in stages(SYSTEMS[system]):
+        golden = GOLDEN / f"{system}.{name}.yaml"
+        text = format_ir(design)
+        if os.environ.get("RFC_UPDATE_GOLDEN"):
+            golden.write_text(text)
+        assert text == golden.read_text(), f"IR after {name} differs from {golden.name}"

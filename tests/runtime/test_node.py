@@ -1,0 +1,70 @@
+"""The ROS 2 node's device-independent logic: the runtime between callbacks and DMA devices."""
+
+from __future__ import annotations
+
+import socket
+import threading
+
+from rfc.runtime.core import QueueConfig, Runtime
+from rfc.runtime.dma_device import FileDma
+from rfc.runtime.loopback import PassThroughLogic, pass_through_routes
+from rfc.runtime.node import NodeCore
+from rfc.runtime.plan import RuntimePlan
+from rfc.runtime.replay import replay
+from tests.runtime.support import compiled, pose_messages
+
+
+def fake_logic(sock: socket.socket, logic: PassThroughLogic) -> None:
+    """The other end of the DMA: answer each PS→PL transfer, one datagram per transfer."""
+    while transfer := sock.recv(1 << 20):
+        for answer in logic.transfer(transfer):
+            sock.send(answer)
+    sock.close()
+
+
+def test_node_core_moves_messages_through_the_dma_devices(tmp_path):
+    design = compiled(tmp_path, "pose_mixed.yaml")
+    plan = RuntimePlan(design)
+    messages = pose_messages(plan.types, 20)
+    expected = replay(Runtime(plan), messages, PassThroughLogic(pass_through_routes(design)))
+    ours, theirs = socket.socketpair(socket.AF_UNIX, socket.SOCK_SEQPACKET)
+    logic = threading.Thread(
+        target=fake_logic, args=(theirs, PassThroughLogic(pass_through_routes(design), cut=40))
+    )
+    logic.start()
+    published = []
+    done = threading.Event()
+
+    def publish(message):
+        published.append(message)
+        if len(published) == len(messages):
+            done.set()
+
+    dma = FileDma(ours.fileno(), ours.fileno(), 1 << 20)
+    core = NodeCore(plan, dma, publish, QueueConfig(depth=len(messages)), clock=lambda: 7)
+    assert core.topics == ("/amcl_pose",)
+    core.start()
+    for message in messages:
+        core.on_message(message.topic, message.data)
+    assert done.wait(20), f"only {len(published)} of {len(messages)} published"
+    ours.shutdown(socket.SHUT_RDWR)
+    account = core.stop()
+    logic.join(5)
+    assert [(p.topic, p.data) for p in published] == [(e.topic, e.data) for e in expected]
+    assert {p.stamp for p in published} == {7}
+    assert account.published == {"/pose_cleared": 20}
+    assert account.to_logic == {"Pose_sub": 20, "Pass2_in0_sub": 20}
+    assert not account.dropped
+
+
+def test_messages_offered_faster_than_the_dma_overflow_and_are_counted(tmp_path):
+    design = compiled(tmp_path, "pose_mixed.yaml")
+    plan = RuntimePlan(design)
+    ours, theirs = socket.socketpair(socket.AF_UNIX, socket.SOCK_SEQPACKET)
+    core = NodeCore(plan, FileDma(ours.fileno(), ours.fileno(), 1 << 20), lambda _: None)
+    for message in pose_messages(plan.types, 15):  # not started: nothing leaves the queue
+        core.on_message(message.topic, message.data)
+    ours.shutdown(socket.SHUT_RDWR)
+    account = core.stop()
+    theirs.close()
+    assert account.dropped == {("Pose_sub", "overflow"): 5, ("Pose_sub", "unsent"): 10}

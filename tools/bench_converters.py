@@ -129,7 +129,7 @@ def throughput_rows(work: Path, widths: list[int]) -> list[str]:
 
 
 @block
-def _frame_length_only(plan, **ports):
+def frame_length_only(plan, **ports):
     """The frame-length circuit alone: the publisher's top-level length inputs, the length."""
     counts = {name: signal for name, signal in ports.items() if name != "frame_length"}
     return frame_length_circuit(plan, counts, ports["frame_length"])
@@ -143,7 +143,7 @@ def frame_length_resources(converters, work: Path):
     with elaboration(), warnings.catch_warnings():
         warnings.simplefilter("ignore", ToVHDLWarning)
         warnings.simplefilter("ignore", ToVerilogWarning)
-        top = top_block("image_frame_length", list(signals), _frame_length_only, plan=converters)
+        top = top_block("image_frame_length", list(signals), frame_length_only, plan=converters)
         files = convert_myhdl(top(**signals), "image_frame_length", work, verilog=False)
     return estimate_resources(files, "image_frame_length")
 
@@ -160,13 +160,14 @@ def resource_rows(work: Path) -> list[str]:
                 cells.append(estimate_resources(made.vhdl, made.name))
             short = type_name.rsplit("/", 1)[-1]
             rows.append(row(short, width, cells[0].lut, cells[0].ff, cells[1].lut, cells[1].ff))
-    image = plan(
-        flatten(message_types(Middleware.ROS2), IMAGE),
-        64,
-        Limits(string=256, sequence=2**22 - 1, frame=4096),
-    )
-    circuit = frame_length_resources(image, work / "frame-length")
-    rows.append(row("Image frame-length circuit", "-", circuit.lut, circuit.ff, "-", "-"))
+    # The circuit's adders are as wide as the configured maxima make the lengths.
+    for label, limits in (
+        ("strings <= 64, data <= 640x480x3", Limits(string=64, sequence=640 * 480 * 3)),
+        ("strings <= 256, data < 2^22", Limits(string=256, sequence=2**22 - 1)),
+    ):
+        image = plan(flatten(message_types(Middleware.ROS2), IMAGE), 64, limits)
+        circuit = frame_length_resources(image, work / f"frame-length-{limits.string}")
+        rows.append(row(f"Image frame-length circuit ({label})", "-", circuit.lut, circuit.ff))
     return rows
 
 

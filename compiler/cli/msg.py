@@ -1,4 +1,4 @@
-"""`rfc msg ...`: inspect message layouts."""
+"""`rfc msg ...`: inspect message layouts and run a type's converters over a bag."""
 
 from __future__ import annotations
 
@@ -11,11 +11,15 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
+from rfc.errors import RfcError
+from rfc.lib.converters.loopback_run import LoopbackReport, loopback
 from rfc.messages.layout import Layout, LayoutField, flatten
 from rfc.messages.rosbags_adapter import Middleware, message_types
 from rfc.messages.selection import select
 
-msg_app = typer.Typer(help="Inspect ROS message layouts.", no_args_is_help=True)
+msg_app = typer.Typer(
+    help="Inspect ROS message layouts and test their hardware converters.", no_args_is_help=True
+)
 
 MiddlewareOption = Annotated[
     Middleware, typer.Option("--middleware", "-m", help="Wire format: ROS 1 or ROS 2 (CDR).")
@@ -124,3 +128,75 @@ def _add_rows(table: Table, layout: Layout, prefix: str) -> None:
         )
         if field.element is not None:
             _add_rows(table, field.element, f"{prefix}{field.path}[].")
+
+
+def _bus_width(value: int) -> int:
+    if value not in (8, 32, 64):
+        raise typer.BadParameter(f"{value} is not a bus width; expected 8, 32 or 64")
+    return value
+
+
+@msg_app.command("loopback")
+def loopback_command(
+    type_name: Annotated[str, typer.Argument(help="Message type, e.g. nav_msgs/msg/Odometry.")],
+    bag: Annotated[
+        Path, typer.Option("--bag", help="ROS 1 .bag or ROS 2 .mcap/.db3 holding the messages.")
+    ],
+    topic: Annotated[str | None, typer.Option(help="Only the messages of this topic.")] = None,
+    middleware: Annotated[
+        Middleware | None,
+        typer.Option(
+            "--middleware", "-m", help="The bag's wire format (checked; default: the bag's)."
+        ),
+    ] = None,
+    width: Annotated[
+        int, typer.Option(help="AXI-Stream bus width in bits: 8, 32 or 64.", callback=_bus_width)
+    ] = 64,
+    count: Annotated[
+        int | None, typer.Option(min=1, help="Only the first COUNT messages of the type.")
+    ] = None,
+    keep: Annotated[
+        Path | None, typer.Option(help="Keep the generated VHDL and simulation files here.")
+    ] = None,
+    as_json: Annotated[bool, typer.Option("--json", help="Print one JSON document.")] = False,
+) -> None:
+    """Round-trip a bag's messages through the generated subscriber and publisher (GHDL).
+
+    Exit status 1 when any message does not come out as rosbags serializes it.
+    """
+    if not bag.exists():
+        raise RfcError(f"bag '{bag}' does not exist", hint="give the path of a .bag, .mcap or .db3")
+    report = loopback(
+        type_name, bag, topic=topic, middleware=middleware, width=width, count=count, workdir=keep
+    )
+    if as_json:
+        print(json.dumps(report.as_json(), indent=2))
+    else:
+        Console(highlight=False).print(loopback_table(report))
+    if not report.equal:
+        raise typer.Exit(1)
+
+
+def loopback_table(report: LoopbackReport) -> Table:
+    """A summary of a loopback run: messages, mismatches and the converters' cycle counts."""
+    results = report.results
+    table = Table(
+        title=f"{report.type_name} loopback ({report.middleware.label}, {report.width}-bit bus)",
+        title_justify="left",
+    )
+    table.add_column("measure")
+    table.add_column("value", justify="right")
+    mismatches = [str(r.index) for r in results if not r.equal]
+    table.add_row("messages", str(len(results)))
+    table.add_row("byte-exact", "all" if not mismatches else f"{len(results) - len(mismatches)}")
+    if mismatches:
+        table.add_row("differ (indices)", ", ".join(mismatches[:20]), style="red")
+    for label, cycles in (
+        (
+            "subscriber cycles (first beat in -> fields valid)",
+            [r.subscriber_cycles for r in results],
+        ),
+        ("publisher cycles (fields given -> last beat out)", [r.publisher_cycles for r in results]),
+    ):
+        table.add_row(label, f"{min(cycles)} .. {max(cycles)}")
+    return table

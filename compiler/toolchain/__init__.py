@@ -13,6 +13,7 @@ from rfc.toolchain.ghdl import (
     VhdlPort,
     analyze,
     read_entities,
+    simulate,
     synthesize_verilog,
 )
 from rfc.toolchain.yosys import Resources, estimate_resources
@@ -28,6 +29,7 @@ __all__ = [
     "estimate_resources",
     "read_entities",
     "run_cocotb",
+    "simulate",
     "start_new_design",
     "synthesize_verilog",
 ]

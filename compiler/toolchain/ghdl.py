@@ -5,7 +5,7 @@ from __future__ import annotations
 import shutil
 import subprocess
 import tempfile
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from xml.etree import ElementTree
@@ -153,3 +153,25 @@ def _port_type(subtype: ElementTree.Element | None) -> tuple[int | None, bool]:
                 return abs(left - right) + 1, False
             return None, False
     return None, False
+
+
+def simulate(
+    files: Sequence[Path], top: str, workdir: Path, generics: Mapping[str, object] | None = None
+) -> str:
+    """Analyze and elaborate VHDL files, run the testbench `top` to its end, return its output.
+
+    Args:
+        files: VHDL files in compile order, the testbench among them.
+        top: The testbench entity; it must stop by itself.
+        workdir: GHDL's work folder.
+        generics: Values for the testbench's generics.
+
+    Raises:
+        GhdlError: The design does not analyze or elaborate, or the run fails.
+    """
+    analyze(files, workdir, top)
+    options = [f"--std={STANDARD}", "-fsynopsys", f"--workdir={workdir}"]
+    assignments = [f"-g{name}={value}" for name, value in (generics or {}).items()]
+    # numeric_std's warnings (metavalues before reset, truncations MyHDL's conversion relies on)
+    # would fill the captured output with millions of lines over a long run.
+    return _ghdl(["-r", *options, top, *assignments, "--ieee-asserts=disable"], workdir)

@@ -3,7 +3,8 @@
 The mirror of the subscriber's `window`: the serializer gives 0 to W bytes per cycle (lanes
 0 up of `data`), the packer appends them behind what it holds and moves the first W bytes to a
 registered output beat as soon as it has them. It has `room` for W more bytes whenever it holds
-at most W, so a serializer giving W bytes per cycle sends one beat per cycle.
+at most 2W, so a serializer giving W bytes per cycle sends one beat per cycle even when what it
+gives does not line up with beats.
 
 The beat that ends a frame is known from the frame's length, loaded at `start`: once the
 packer holds all the frame's remaining bytes it sends them with ``tlast`` (and ``tkeep``
@@ -57,14 +58,14 @@ def byte_packer(
         tlast: Output last beat of the frame.
         width: Bus width in bytes.
     """
-    size = 2 * width
+    size = 3 * width
     held = Signal(intbv(0)[8 * size :])
     count = Signal(intbv(0, min=0, max=size + 1))
     remaining = Signal(intbv(0)[COUNTER_BITS:])
 
     @always_comb
     def status() -> None:
-        room.next = count <= width
+        room.next = count <= 2 * width
         idle.next = remaining == 0 and not tvalid
 
     @always_seq(clk.posedge, reset=rst)

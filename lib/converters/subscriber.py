@@ -61,7 +61,7 @@ def rfc_subscriber(plan: Plan, **ports: Any) -> Any:
 
     # ---- the byte window
     front = Signal(intbv(0)[8 * width :])
-    avail = Signal(intbv(0, min=0, max=2 * width + 1))
+    avail = Signal(intbv(0, min=0, max=3 * width + 1))
     ended = Signal(bool(0))
     take = Signal(intbv(0, min=0, max=width + 1))
     release = Signal(bool(0))

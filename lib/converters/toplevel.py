@@ -21,9 +21,9 @@ from collections.abc import Callable, Iterator, Sequence
 from typing import Any
 
 from myhdl import ResetSignal, Signal, block, intbv
-from myhdl import _block as myhdl_block
 
 from rfc.lib.converters.ports import Port, PortRole
+from rfc.toolchain import start_new_design
 
 _serial = itertools.count()
 
@@ -130,8 +130,7 @@ def elaboration() -> Iterator[None]:
             frame = frame.f_back
         return records
 
-    myhdl_block._name_set.clear()
-    myhdl_block._inst_name_set.clear()
+    start_new_design()
     inspect.stack = stack
     try:
         yield

@@ -1,10 +1,12 @@
 """The subscriber's byte window: AXI-Stream beats in, any number of bytes out per cycle.
 
 A frame's fields do not respect beat boundaries once a string has shifted them, so the parser
-does not read beats: it reads the first bytes of a window of up to two beats and says how many
-it consumed (`take`, 0 to W). The window shifts those out, appends the next beat behind what
-remains, and accepts a beat whenever at most one beat's worth is left — so a parser taking W
-bytes per cycle takes one beat per cycle. Bytes beyond the valid ones are kept at zero.
+does not read beats: it reads the first bytes of a window of up to three beats and says how
+many it consumed (`take`, 0 to W). The window shifts those out, appends the next beat behind
+what remains, and accepts a beat whenever at most two beats' worth are held — so a parser taking
+W bytes per cycle takes one beat per cycle even when its fields straddle beats (with room for
+only two beats, a misaligned stream would stall every other cycle). Bytes beyond the valid ones
+are kept at zero.
 
 A beat with ``tlast`` ends the frame: the window then accepts nothing more until the parser
 `release`s it, which keeps the next frame's bytes out of this one's trailing-bytes check.
@@ -47,18 +49,19 @@ def byte_window(
         take: Bytes the parser consumes this cycle (at most `avail` and `width`).
         release: The parser finished the frame: accept the next one.
         front: Driven: the first `width` bytes (lane 0 is the next byte of the frame).
-        avail: Driven: how many bytes of the window are valid (0 to 2 * width).
+        avail: Driven: how many bytes of the window are valid (0 to 3 * width).
         ended: Driven: the frame's last beat is in the window.
         width: Bus width in bytes.
     """
-    size = 2 * width
+    size = 3 * width
+    room = 2 * width
     buffer = Signal(intbv(0)[8 * size :])
     count = Signal(intbv(0, min=0, max=size + 1))
     done = Signal(bool(0))
 
     @always_comb
     def handshake() -> None:
-        tready.next = count <= width and not done
+        tready.next = count <= room and not done
 
     @always_comb
     def outputs() -> None:
@@ -72,7 +75,7 @@ def byte_window(
         kept[:] = count - take
         merged = intbv(0)[8 * size :]
         merged[:] = buffer >> (8 * int(take))
-        if tvalid and count <= width and not done:
+        if tvalid and count <= room and not done:
             beat = intbv(0)[8 * size :]
             added = 0
             for lane in range(width):

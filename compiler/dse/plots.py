@@ -7,6 +7,7 @@ combined schedulers at the largest N. Lines carry the 95 % confidence interval a
 
 from __future__ import annotations
 
+import textwrap
 from collections.abc import Callable
 from pathlib import Path
 
@@ -131,7 +132,7 @@ def figure8(result: SweepResult) -> Figure:
     axis.set_xticks(range(len(result.plan.sizes)), [str(n) for n in result.plan.sizes])
     axis.set_xlabel("accelerators N")
     axis.set_ylabel("accelerators")
-    axis.set_yscale("symlog", linthresh=8)
+    axis.set_ylim(0, 1.08 * max(result.plan.sizes))
     axis.set_title(f"{name} dataset")
     axis.legend(fontsize=8)
     return figure
@@ -213,7 +214,7 @@ def write_figures(result: SweepResult, directory: Path) -> list[str]:
     names = []
     for name, draw in FIGURES.items():
         figure = draw(result)
-        figure.suptitle(CAPTIONS[name], fontsize=10)
+        figure.suptitle(textwrap.fill(CAPTIONS[name], 80), fontsize=10)
         figure.tight_layout()
         figure.savefig(directory / f"{name}.png", dpi=110, metadata={"Software": None})
         figure.savefig(directory / f"{name}.svg", metadata={"Date": None})

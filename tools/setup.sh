@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Prepare a machine for rfc: GHDL and Yosys from the system package manager when missing,
+# Prepare a machine for rfc: GHDL, Yosys and Tcl from the system package manager when missing,
 # and .venv holding rfc with its development extras. Idempotent; quick when already done.
 # Usage: tools/setup.sh   (sourced or run; prints nothing when there is nothing to do)
 set -euo pipefail
@@ -10,6 +10,8 @@ install_simulators() {
     local missing=()
     command -v ghdl >/dev/null 2>&1 || missing+=(ghdl)
     command -v yosys >/dev/null 2>&1 || missing+=(yosys)
+    # tclsh runs the generated Vivado/Vitis scripts under recording stand-ins in the tests.
+    command -v tclsh >/dev/null 2>&1 || missing+=(tcl)
     [ ${#missing[@]} -eq 0 ] && return 0
     local cmd="apt-get update && DEBIAN_FRONTEND=noninteractive apt-get install -y ${missing[*]}"
     echo "rfc set-up: installing ${missing[*]}" >&2

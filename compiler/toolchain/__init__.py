@@ -6,17 +6,28 @@ co-simulation — so the converters, schedulers and whole systems share these fu
 """
 
 from rfc.toolchain.cocotb_sim import CosimError, run_cocotb
-from rfc.toolchain.convert import convert_myhdl
-from rfc.toolchain.ghdl import GhdlError, analyze, synthesize_verilog
+from rfc.toolchain.convert import convert_myhdl, start_new_design
+from rfc.toolchain.ghdl import (
+    GhdlError,
+    VhdlEntity,
+    VhdlPort,
+    analyze,
+    read_entities,
+    synthesize_verilog,
+)
 from rfc.toolchain.yosys import Resources, estimate_resources
 
 __all__ = [
     "CosimError",
     "GhdlError",
     "Resources",
+    "VhdlEntity",
+    "VhdlPort",
     "analyze",
     "convert_myhdl",
     "estimate_resources",
+    "read_entities",
     "run_cocotb",
+    "start_new_design",
     "synthesize_verilog",
 ]

@@ -6,8 +6,24 @@ import threading
 from pathlib import Path
 from typing import Any
 
+from myhdl import _block as myhdl_block
+
 #: MyHDL's converters are module-level singletons configured by attributes: one at a time.
 _CONVERTER_LOCK = threading.Lock()
+
+
+def start_new_design() -> None:
+    """Start MyHDL's instance naming afresh before elaborating a new design.
+
+    MyHDL keeps every instance name it ever gave in module-level sets and makes a repeated name
+    unique by appending a suffix per repetition, so a process elaborating many designs (a sweep,
+    a test worker) gets names that grow without bound until GHDL rejects them, and that differ
+    from run to run. Names need only be unique within one design. Call this before calling the
+    top-level block function.
+    """
+    myhdl_block._name_set.clear()
+    myhdl_block._inst_name_set.clear()
+
 
 #: The support package every MyHDL-generated VHDL file uses.
 MYHDL_PACKAGE = "pck_myhdl_011.vhd"

@@ -4,8 +4,11 @@ from __future__ import annotations
 
 import shutil
 import subprocess
+import tempfile
 from collections.abc import Sequence
+from dataclasses import dataclass
 from pathlib import Path
+from xml.etree import ElementTree
 
 #: VHDL standard rfc generates and checks against.
 STANDARD = "08"
@@ -54,3 +57,99 @@ def synthesize_verilog(files: Sequence[Path], top: str, workdir: Path) -> str:
     return _ghdl(
         ["--synth", *options, "--out=verilog", *map(str, _vhdl(files)), "-e", top], workdir
     )
+
+
+@dataclass(frozen=True)
+class VhdlPort:
+    """A port as written in a VHDL entity.
+
+    Attributes:
+        name: Identifier, lower case (VHDL is case-insensitive).
+        mode: ``in``, ``out``, ``inout`` or ``buffer``.
+        bits: Width of a vector with literal bounds, 1 for a single bit, None when the bounds
+            are not literals (generics).
+        wire: Whether the type is ``std_logic`` (or ``std_ulogic``/``bit``).
+        line: Line of the declaration.
+        column: Column of the declaration.
+    """
+
+    name: str
+    mode: str
+    bits: int | None
+    wire: bool
+    line: int
+    column: int
+
+
+@dataclass(frozen=True)
+class VhdlEntity:
+    """An entity's name, where it is declared, and its ports in order."""
+
+    name: str
+    file: Path
+    line: int
+    ports: tuple[VhdlPort, ...]
+
+
+def read_entities(path: Path) -> list[VhdlEntity]:
+    """Read the entities of a VHDL file with GHDL's own parser (``--file-to-xml``).
+
+    Raises:
+        GhdlError: The file does not parse; the message holds GHDL's diagnostics.
+    """
+    path = Path(path).resolve()
+    with tempfile.TemporaryDirectory(prefix="rfc-ghdl-") as scratch:
+        # --file-to-xml exits 0 even when the file does not parse: check the syntax first.
+        _ghdl(["-s", f"--std={STANDARD}", "-fsynopsys", str(path)], Path(scratch))
+        text = _ghdl(["--file-to-xml", f"--std={STANDARD}", "-fsynopsys", str(path)], Path(scratch))
+    root = ElementTree.fromstring(text)
+    by_id = {el.get("id"): el for el in root.iter() if el.get("id")}
+    entities = []
+    for unit in root.iter():
+        if unit.get("kind") != "entity_declaration" or unit.get("file") not in (
+            path.name,
+            str(path),
+        ):
+            continue
+        ports = []
+        for port in unit.findall("port_chain/el"):
+            subtype = port.find("subtype_indication")
+            if subtype is not None and subtype.get("ref"):
+                subtype = by_id.get(subtype.get("ref"))
+            bits, wire = _port_type(subtype)
+            ports.append(
+                VhdlPort(
+                    port.get("identifier", "").lower(),
+                    port.get("mode", "in"),
+                    bits,
+                    wire,
+                    int(port.get("line", 0)),
+                    int(port.get("col", 0)),
+                )
+            )
+        entities.append(
+            VhdlEntity(
+                unit.get("identifier", "").lower(), path, int(unit.get("line", 0)), tuple(ports)
+            )
+        )
+    return entities
+
+
+_WIRE_TYPES = {"std_logic", "std_ulogic", "bit"}
+
+
+def _port_type(subtype: ElementTree.Element | None) -> tuple[int | None, bool]:
+    if subtype is None:
+        return None, False
+    if subtype.get("kind") == "simple_name":
+        return (1, True) if subtype.get("identifier", "").lower() in _WIRE_TYPES else (None, False)
+    for node in subtype.iter():
+        if node.get("kind") == "range_expression":
+            limits = [node.find(f"{side}_limit_expr") for side in ("left", "right")]
+            if all(
+                limit is not None and limit.get("kind") == "integer_literal" for limit in limits
+            ):
+                left, right = (int(limit.get("value", "0")) for limit in limits)  # type: ignore[union-attr]
+                return abs(left - right) + 1, False
+            return None, False
+    return None, False

@@ -11,7 +11,6 @@ from __future__ import annotations
 from typing import Any
 
 from myhdl import ResetSignal, Signal, block, intbv
-from myhdl import _block as myhdl_block
 
 from rfc.lib.schedulers.composition import SchedulerBlock, composition
 from rfc.lib.schedulers.edf import loedf_hardware, roedf_hardware
@@ -20,6 +19,7 @@ from rfc.lib.schedulers.lru import lru_hardware
 from rfc.lib.schedulers.lst import lst_hardware
 from rfc.lib.schedulers.spec import Algorithm, AnySchedulerSpec, CompositionSpec, SchedulerSpec
 from rfc.lib.schedulers.statechart import PolicyHardware, statechart
+from rfc.toolchain import start_new_design
 
 
 def policy_hardware(spec: SchedulerSpec) -> PolicyHardware:
@@ -77,20 +77,8 @@ def scheduler_top(spec: AnySchedulerSpec) -> SchedulerBlock:
 
 def top_instance(spec: AnySchedulerSpec) -> Any:
     """An elaborated `scheduler_top` with fresh port signals (for conversion or simulation)."""
-    _forget_block_names()
+    start_new_design()
     return scheduler_top(spec)(*top_ports(spec))
-
-
-def _forget_block_names() -> None:
-    """Start MyHDL's block naming afresh for a new design.
-
-    MyHDL keeps every instance name it ever gave in module-level sets and makes a repeated name
-    unique by appending a suffix per repetition, so a process elaborating many designs (the
-    sweep, a test worker) gets names that grow without bound until GHDL rejects them. Names
-    need only be unique within one design.
-    """
-    myhdl_block._name_set.clear()
-    myhdl_block._inst_name_set.clear()
 
 
 def top_ports(spec: AnySchedulerSpec) -> tuple[Any, ...]:

@@ -10,6 +10,7 @@ from rfc.toolchain import (
     analyze,
     convert_myhdl,
     estimate_resources,
+    read_entities,
     run_cocotb,
 )
 from tests.toolchain.counter import counter_instance
@@ -57,3 +58,36 @@ def test_cocotb_passes_and_fails(tmp_path, counter_files):
             tmp_path / "fail",
             env={"COUNTER_CYCLES": "7", "COUNTER_EXPECT": "8"},
         )
+
+
+def test_read_entities_with_ghdls_parser(tmp_path):
+    source = tmp_path / "acc.vhd"
+    source.write_text(
+        "library ieee; use ieee.std_logic_1164.all;\n"
+        "entity Acc is\n"
+        "  generic (N : integer := 4);\n"
+        "  port (\n"
+        "    clk, rst : in std_logic;\n"
+        "    q_x : in std_logic_vector(63 downto 0);\n"
+        "    euler_x : out std_logic_vector(0 to 63);\n"
+        "    wide : out std_logic_vector(N - 1 downto 0)\n"
+        "  );\n"
+        "end entity;\n"
+        "architecture a of acc is begin end;\n"
+    )
+    (entity,) = read_entities(source)
+    assert (entity.name, entity.line) == ("acc", 2)
+    assert [(p.name, p.mode, p.bits, p.wire, p.line) for p in entity.ports] == [
+        ("clk", "in", 1, True, 5),
+        ("rst", "in", 1, True, 5),
+        ("q_x", "in", 64, False, 6),
+        ("euler_x", "out", 64, False, 7),
+        ("wide", "out", None, False, 8),
+    ]
+
+
+def test_read_entities_reports_syntax_errors(tmp_path):
+    source = tmp_path / "bad.vhd"
+    source.write_text("entity bad is port (a : in bit) end;\n")
+    with pytest.raises(GhdlError, match=r"bad\.vhd"):
+        read_entities(source)

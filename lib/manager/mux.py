@@ -1,0 +1,227 @@
+"""PL→PS: the scheduler picks a publisher; its payload leaves behind a chunk header.
+
+The publishers' `tvalid` are the scheduler's requests and their `tlast` its task ends; the
+scheduler's `offer` names the publisher that holds the channel. For each chunk the mux writes
+the 8-byte header (id, flags, the publisher's frame length) and then lets the holder's beats
+through: the scheduler's `ready` input is high only then, so its `grant` drives exactly the
+holder's `tready`.
+
+Preemption: when the offer moves to another publisher in the middle of a message, the chunk
+ends and the rest of the message follows later in chunks of its own (START clear). AXI-Stream
+forbids changing `tlast` once `tvalid` is up, so beats pass through a 2-entry buffer and a beat
+leaves with `tlast` low only when its successor is already held: the last beat held can always
+carry `tlast` when the chunk has to end. A pause of the scheduler (offer empty, as ROEDF makes
+while it recomputes) only waits. END is set in headers of non-preemptive schedulers, whose
+chunks always carry whole messages (docs/protocol.md).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from myhdl import Signal, always_comb, always_seq, block, enum, intbv
+
+from rfc.lib.manager.header import FLAG_END, FLAG_START, HEADER_BYTES, BusGeometry
+from rfc.lib.schedulers.hardware import scheduler_block
+from rfc.lib.schedulers.spec import AnySchedulerSpec, CompositionSpec
+
+
+def is_preemptive(spec: AnySchedulerSpec) -> bool:
+    """Whether the scheduler (or any scheduler in a composition) may cut a message."""
+    if isinstance(spec, CompositionSpec):
+        return is_preemptive(spec.parent) or any(is_preemptive(c) for c in spec.children)
+    return spec.algorithm.preemptive
+
+
+@block
+def chunk_mux(
+    clk: Any,
+    rst: Any,
+    s_tdata: Any,
+    s_tkeep: Any,
+    s_tvalid: Any,
+    s_tready: Any,
+    s_tlast: Any,
+    s_length: Any,
+    m_tdata: Any,
+    m_tkeep: Any,
+    m_tvalid: Any,
+    m_tready: Any,
+    m_tlast: Any,
+    width: int,
+    scheduler: AnySchedulerSpec,
+) -> Any:
+    """Multiplex `publishers` converters onto the PL→PS DMA stream through a scheduler.
+
+    Args:
+        clk: Clock.
+        rst: Synchronous reset, active high.
+        s_tdata: intbv[publishers*width] in: publisher i's data in bits [(i+1)*width, i*width).
+        s_tkeep: intbv[publishers*width/8] in, likewise.
+        s_tvalid: intbv[publishers] in: requests.
+        s_tready: intbv[publishers] out: the scheduler's grant.
+        s_tlast: intbv[publishers] in: message ends.
+        s_length: intbv[publishers*32] in: each publisher's frame length in bytes, valid
+            whenever its `tvalid` is high and stable until its `tlast` beat.
+        m_tdata: intbv[width] out, to the DMA (S2MM).
+        m_tkeep: intbv[width/8] out.
+        m_tvalid: bool out.
+        m_tready: bool in.
+        m_tlast: bool out.
+        width: Bus width in bits (8, 32, 64).
+        scheduler: The scheduler, one input per publisher (its `n` is the publisher count).
+    """
+    geometry = BusGeometry(width)
+    lanes = geometry.lanes
+    header_beats = geometry.header_beats
+    n = scheduler.n
+    preemptive = is_preemptive(scheduler)
+    flags_whole = FLAG_START | FLAG_END
+    t_state = enum("IDLE", "HEADER", "PAYLOAD", "ENDING")  # no process may share these names
+
+    ready = Signal(bool(0))
+    offer = Signal(intbv(0)[n:])
+    grant = Signal(intbv(0)[n:])
+    state = Signal(t_state.IDLE)
+    owner = Signal(intbv(0, min=0, max=max(n, 2)))
+    offered = Signal(intbv(0, min=0, max=max(n, 2)))
+    header = Signal(intbv(0)[8 * HEADER_BYTES :])
+    beat = Signal(intbv(0, min=0, max=header_beats + 1))
+    in_progress = Signal(intbv(0)[n:])
+    # The 2-entry buffer: head first.
+    count = Signal(intbv(0, min=0, max=3))
+    head_data = Signal(intbv(0)[width:])
+    head_keep = Signal(intbv(0)[lanes:])
+    tail_data = Signal(intbv(0)[width:])
+    tail_keep = Signal(intbv(0)[lanes:])
+    message_end = Signal(bool(0))
+    # The holder's lanes, and what enters the buffer this cycle.
+    owner_data = Signal(intbv(0)[width:])
+    owner_keep = Signal(intbv(0)[lanes:])
+    owner_last = Signal(bool(0))
+    owner_offered = Signal(bool(0))
+    switch = Signal(bool(0))
+    space = Signal(bool(0))
+    leaving = Signal(bool(0))
+    out_valid = Signal(bool(0))
+    out_last = Signal(bool(0))
+
+    arbiter = scheduler_block(scheduler)(
+        clk, rst, s_tvalid, s_tlast, ready, offer, grant, scheduler
+    )
+
+    @always_comb
+    def select_holder():
+        data = intbv(0)[width:]
+        keep = intbv(0)[lanes:]
+        for index in range(n):
+            if owner == index:
+                data[:] = s_tdata[(index + 1) * width : index * width]
+                keep[:] = s_tkeep[(index + 1) * lanes : index * lanes]
+        owner_data.next = data
+        owner_keep.next = keep
+        owner_last.next = s_tlast[owner]
+        owner_offered.next = offer[owner]
+        switch.next = offer != 0 and not offer[owner]
+
+    @always_comb
+    def find_offered():
+        chosen = 0
+        for index in range(n):
+            if offer[index]:
+                chosen = index
+        offered.next = chosen
+
+    @always_comb
+    def present():
+        valid = count == 2 or (count == 1 and state == t_state.ENDING)
+        out_valid.next = valid
+        out_last.next = count == 1 and state == t_state.ENDING
+        leaving.next = valid and m_tready
+        space.next = count < 2 or (valid and m_tready)
+
+    @always_comb
+    def drive_outputs():
+        m_tvalid.next = out_valid
+        m_tlast.next = out_last
+        m_tdata.next = head_data
+        m_tkeep.next = head_keep
+        ready.next = state == t_state.PAYLOAD and owner_offered and space
+        s_tready.next = grant
+
+    @always_seq(clk.posedge, reset=rst)
+    def sequence():
+        # What enters the buffer this cycle, if anything.
+        enter = False
+        enter_data = intbv(0)[width:]
+        enter_keep = intbv(0)[lanes:]
+        if state == t_state.HEADER and space:
+            enter = True
+            for index in range(header_beats):
+                if beat == index:
+                    enter_data[:] = header[(index + 1) * width : index * width]
+            enter_keep[:] = 2**lanes - 1
+            if beat == header_beats - 1:
+                state.next = t_state.PAYLOAD
+            beat.next = beat + 1
+        elif state == t_state.PAYLOAD:
+            if grant != 0:
+                if owner_last:
+                    message_end.next = True
+                    state.next = t_state.ENDING
+                # A null beat (tkeep empty) only carries tlast: it folds onto the held beat.
+                if owner_keep != 0 or not owner_last:
+                    enter = True
+                    enter_data[:] = owner_data
+                    enter_keep[:] = owner_keep
+            elif switch:
+                state.next = t_state.ENDING
+        elif state == t_state.IDLE and count == 0 and offer != 0:
+            owner.next = offered
+            beat.next = 0
+            message_end.next = False
+            flags = intbv(0)[16:]
+            if preemptive:
+                if not in_progress[offered]:
+                    flags[:] = FLAG_START
+            else:
+                flags[:] = flags_whole
+            word = intbv(0)[8 * HEADER_BYTES :]
+            word[16:0] = offered
+            word[32:16] = flags
+            for index in range(n):
+                if offered == index:
+                    word[64:32] = s_length[(index + 1) * 32 : index * 32]
+            header.next = word
+            in_progress.next[offered] = True
+            state.next = t_state.HEADER
+
+        # The buffer: the head leaves, the entering beat joins behind what stays.
+        if leaving:
+            if count == 2:
+                head_data.next = tail_data
+                head_keep.next = tail_keep
+                if enter:
+                    tail_data.next = enter_data
+                    tail_keep.next = enter_keep
+                else:
+                    count.next = 1
+            elif enter:
+                head_data.next = enter_data
+                head_keep.next = enter_keep
+            else:
+                count.next = 0
+                if out_last:
+                    state.next = t_state.IDLE
+                    if message_end:
+                        in_progress.next[owner] = False
+        elif enter:
+            if count == 0:
+                head_data.next = enter_data
+                head_keep.next = enter_keep
+            else:
+                tail_data.next = enter_data
+                tail_keep.next = enter_keep
+            count.next = count + 1
+
+    return arbiter, select_holder, find_offered, present, drive_outputs, sequence

@@ -22,6 +22,9 @@ from rfc.errors import RfcError
 
 dse_app = typer.Typer()
 
+#: Smallest and largest number of accelerators a sweep accepts.
+MIN_N, MAX_N = 2, 1024
+
 SpecArgument = Annotated[
     Path | None,
     typer.Argument(
@@ -39,12 +42,26 @@ def _sizes(text: str | None) -> tuple[int, ...]:
     try:
         sizes = tuple(sorted({int(part) for part in text.split(",") if part.strip()}))
     except ValueError:
-        raise typer.BadParameter(
-            f"'{text}' is not a comma-separated list of integers", param_hint="--n"
+        raise RfcError(
+            f"--n '{text}' is not a comma-separated list of integers", hint="for example --n 8,16"
         ) from None
-    if not sizes or min(sizes) < 2 or max(sizes) > 1024:
-        raise typer.BadParameter("each N must be between 2 and 1024", param_hint="--n")
+    if not sizes or min(sizes) < MIN_N or max(sizes) > MAX_N:
+        raise RfcError(
+            f"--n '{text}': each N must be between {MIN_N} and {MAX_N}",
+            hint=f"the paper's sizes are {','.join(map(str, SIZES))}",
+        )
     return sizes
+
+
+def _sweep_only(options: dict[str, object]) -> None:
+    """With SPEC, options that only shape the paper's sweep are a mistake, not silently ignored."""
+    given = [name for name, value in options.items() if value not in (None, False)]
+    if given:
+        raise RfcError(
+            f"{', '.join(given)} appl{'ies' if len(given) == 1 else 'y'} to the paper's sweep, "
+            "not to a project's recommendation",
+            hint="drop SPEC to run the sweep, or these options to rank the project's schedulers",
+        )
 
 
 @dse_app.command("dse")
@@ -90,18 +107,27 @@ def dse(
             "completed,missed,max_lateness,lut).",
         ),
     ] = None,
-    seed: Annotated[int, typer.Option(help="Seed of the datasets.")] = 0,
+    seed: Annotated[int | None, typer.Option(help="Seed of the datasets (default 0).")] = None,
 ) -> None:
     """Explore the schedulers (paper §7.2), or recommend one for the project SPEC."""
     from rfc.dse.engine import default_jobs
 
     workers = jobs or default_jobs()
     if spec is not None:
+        _sweep_only(
+            {"--n": n, "--dataset": dataset, "--replicates": replicates,
+             "--verify-hdl": verify_hdl, "--no-synth": no_synth, "--seed": seed}
+        )  # fmt: skip
         _project(spec, objective, output, as_json)
         return
+    if objective is not None:
+        raise RfcError(
+            "--objective ranks a project's schedulers; give the project's SPEC",
+            hint="rfc dse examples/sensor_hub/SensorHub.yaml --objective completed,lut",
+        )
     _sweep(
         _sizes(n), dataset, replicates, workers, output or Path("dse"), as_json, verify_hdl,
-        not no_synth, seed,
+        not no_synth, seed or 0,
     )  # fmt: skip
 
 

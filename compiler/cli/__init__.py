@@ -13,6 +13,7 @@ from rich.console import Console
 
 from rfc import __version__
 from rfc.cli.build import build_app
+from rfc.cli.dse import dse_app
 from rfc.cli.msg import msg_app
 from rfc.cli.sched import sched_app
 from rfc.cli.sim import sim_app
@@ -29,6 +30,7 @@ app.add_typer(msg_app, name="msg")
 app.add_typer(build_app)
 app.add_typer(sim_app)
 app.add_typer(sched_app, name="sched")
+app.add_typer(dse_app)
 
 
 def _version(value: bool) -> None:

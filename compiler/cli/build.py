@@ -51,7 +51,8 @@ def build(
             "--dump-ir-after",
             metavar="PASS",
             help="Print the IR after this pass (repeatable): parse, resolve-types, "
-            "check-connections, expand-selections, flatten-messages, derive-infrastructure.",
+            "check-connections, expand-selections, flatten-messages, derive-infrastructure, "
+            "resolve-scheduler.",
         ),
     ] = None,
 ) -> None:
@@ -61,13 +62,13 @@ def build(
     from rfc.lower import lower
     from rfc.lower.artifacts import BuildOptions
     from rfc.lower.writer import write_artifacts
-    from rfc.passes.pipeline import pass_names
+    from rfc.passes.pipeline import BUILD_PIPELINE, pass_names
 
     wanted = list(dict.fromkeys(dump_ir_after or ()))
     for name in wanted:
-        if name not in pass_names():
+        if name not in pass_names(BUILD_PIPELINE):
             raise typer.BadParameter(
-                f"'{name}' is not a pass; choose from {', '.join(pass_names())}",
+                f"'{name}' is not a pass; choose from {', '.join(pass_names(BUILD_PIPELINE))}",
                 param_hint="--dump-ir-after",
             )
 
@@ -75,7 +76,7 @@ def build(
         if name in wanted:
             sys.stdout.write(f"# IR after {name}\n{format_ir(design)}")
 
-    design = compile_spec(str(spec), after=dump)
+    design = compile_spec(str(spec), after=dump, pipeline=BUILD_PIPELINE)
     options = BuildOptions(emit_ir=emit_ir, estimate=estimate)
     artifacts = lower(design, options, spec.read_text(encoding="utf-8"))
     write_artifacts(artifacts, output, str(output))

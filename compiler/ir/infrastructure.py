@@ -130,10 +130,19 @@ class SchedulerInput:
 
 @dataclass(frozen=True)
 class Scheduler:
-    """The PL→PS scheduler: its algorithm (``auto`` until the DSE picks) and its inputs."""
+    """The PL→PS scheduler: its algorithm (``auto`` until the DSE picks) and its inputs.
+
+    Attributes:
+        algorithm: LRU, NPFP, PFP, ROEDF, LOEDF, LST, ``auto``, or (once resolve-scheduler
+            has chosen) a composition in `rfc.lib.schedulers.spec.parse_scheduler`'s syntax,
+            such as ``LRU(LOEDF,LST)``.
+        inputs: One per publisher, by id.
+        reason: Why resolve-scheduler chose the algorithm (empty when the spec named it).
+    """
 
     algorithm: str
     inputs: tuple[SchedulerInput, ...]
+    reason: str = ""
 
 
 @dataclass(frozen=True)

@@ -119,6 +119,7 @@ def _system(infrastructure: Infrastructure) -> list[str]:
         "",
         f"## Scheduler: {scheduler.algorithm}",
         "",
+        *([f"Chosen by resolve-scheduler: {scheduler.reason}.", ""] if scheduler.reason else []),
         *markdown_table(
             ["input", "publisher", "transfer beats", "", "period", "deadline"],
             inputs,

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import shutil
 import tempfile
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path, PurePosixPath
 
 from rfc.errors import RfcError
@@ -30,12 +30,36 @@ def write_artifacts(artifacts: Sequence[Artifact], directory: Path, display: str
     Raises:
         RfcError: The directory exists but is not an rfc build directory, or cannot be written.
     """
+
+    def fill(staging: Path) -> None:
+        for artifact in artifacts:
+            path = staging.joinpath(*PurePosixPath(artifact.path).parts)
+            path.parent.mkdir(parents=True, exist_ok=True)
+            path.write_text(artifact.text, encoding="utf-8")
+
+    replace_directory(directory, display, fill)
+
+
+def replace_directory(
+    directory: Path, display: str, fill: Callable[[Path], None], command: str = "rfc build"
+) -> None:
+    """Replace `directory` by a staging directory that `fill` writes, or leave it untouched.
+
+    Args:
+        directory: The output directory.
+        display: How to name it in messages.
+        fill: Writes the files into the staging directory it is given (text or binary).
+        command: The command writing it, for messages.
+
+    Raises:
+        RfcError: The directory exists but was not written by rfc, or cannot be written.
+    """
     target = directory.resolve()
     if target.exists() and not target.is_dir():
         raise RfcError(f"output '{display}' exists and is not a directory")
     if target.exists() and not (target / MARKER).exists() and any(target.iterdir()):
         raise RfcError(
-            f"output directory '{display}' holds files that rfc build did not write; "
+            f"output directory '{display}' holds files that {command} did not write; "
             "refusing to replace it",
             hint="choose another directory with -o, or empty this one",
         )
@@ -46,11 +70,8 @@ def write_artifacts(artifacts: Sequence[Artifact], directory: Path, display: str
     except OSError as exc:
         raise RfcError(f"cannot create output directory '{display}': {exc}") from None
     try:
-        for artifact in artifacts:
-            path = staging.joinpath(*PurePosixPath(artifact.path).parts)
-            path.parent.mkdir(parents=True, exist_ok=True)
-            path.write_text(artifact.text, encoding="utf-8")
-        (staging / MARKER).write_text("written by rfc build; the whole directory is replaced\n")
+        fill(staging)
+        (staging / MARKER).write_text(f"written by {command}; the whole directory is replaced\n")
         _swap(staging, target)
     except OSError as exc:
         raise RfcError(f"cannot write output directory '{display}': {exc}") from None

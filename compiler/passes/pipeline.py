@@ -11,6 +11,7 @@ from rfc.passes.check_connections import CheckConnections
 from rfc.passes.derive_infrastructure import DeriveInfrastructure
 from rfc.passes.expand_selections import ExpandSelections
 from rfc.passes.flatten_messages import FlattenMessages
+from rfc.passes.resolve_scheduler import ResolveScheduler
 from rfc.passes.resolve_types import ResolveTypes
 
 PIPELINE: tuple[Pass, ...] = (
@@ -20,6 +21,8 @@ PIPELINE: tuple[Pass, ...] = (
     FlattenMessages(),
     DeriveInfrastructure(),
 )
+#: `rfc build`'s pipeline: the scheduler left to the DSE is chosen too (`rfc check` skips it).
+BUILD_PIPELINE: tuple[Pass, ...] = (*PIPELINE, ResolveScheduler())
 #: The name of the front-end's output, accepted wherever a pass name is (``--dump-ir-after``).
 PARSE = "parse"
 

@@ -18,7 +18,7 @@ from rfc.spec.python_accelerators import AcceleratorDefinition
 
 SYSTEMS = Path(__file__).parent / "systems"
 sys.path.insert(0, str(SYSTEMS))
-from quat_to_euler import QuaternionToEuler, quat_to_euler  # noqa: E402
+from quat_model import QuaternionToEuler, quat_to_euler  # noqa: E402
 
 HERE = Path(__file__).resolve()
 
@@ -41,7 +41,7 @@ def test_decorator_records_the_block_its_ports_and_reference():
     definition = QuaternionToEuler.definition
     assert definition.kind is AcceleratorKind.MYHDL
     assert definition.top == "QuaternionToEuler"
-    assert definition.sources == ((SYSTEMS / "quat_to_euler.py").resolve(),)
+    assert definition.sources == ((SYSTEMS / "quat_model.py").resolve(),)
     assert [(p.name, p.message) for p in definition.ports] == [
         ("q", "geometry_msgs/Quaternion"),
         ("euler", "geometry_msgs/Point"),

@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 from myhdl import block, delay, instance
 
+from rfc.dse.trace import Trace, bits_to_int, one_hot_index
 from rfc.lib.schedulers.hardware import scheduler_top, top_ports
 from rfc.lib.schedulers.spec import AnySchedulerSpec
-from tests.support.scheduler_traces import Trace, bits_to_int, one_hot_index
 
 
 def simulate_myhdl(spec: AnySchedulerSpec, trace: Trace) -> np.ndarray:

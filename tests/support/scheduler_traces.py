@@ -8,54 +8,12 @@ equivalent to running the hardware closed-loop up to the first difference, which
 
 from __future__ import annotations
 
-import json
-from dataclasses import dataclass
-from pathlib import Path
-
 import numpy as np
 
+from rfc.dse.trace import Trace, bits_to_int, record
 from rfc.lib.schedulers.model import model_of
 from rfc.lib.schedulers.model.traffic import Publishers
 from rfc.lib.schedulers.spec import Algorithm, AnySchedulerSpec, CompositionSpec, SchedulerSpec
-
-
-@dataclass(frozen=True)
-class Trace:
-    """Per-cycle channel signals: request/last bool[C, N], ready bool[C], grant int[C]."""
-
-    request: np.ndarray
-    last: np.ndarray
-    ready: np.ndarray
-    grant: np.ndarray
-
-    @property
-    def cycles(self) -> int:
-        return len(self.grant)
-
-    def save(self, path: Path) -> None:
-        path.write_text(
-            json.dumps(
-                {
-                    "request": [bits_to_int(row) for row in self.request],
-                    "last": [bits_to_int(row) for row in self.last],
-                    "ready": self.ready.astype(int).tolist(),
-                    "grant": self.grant.tolist(),
-                }
-            )
-        )
-
-
-def bits_to_int(row: np.ndarray) -> int:
-    return int(sum(1 << int(i) for i in np.nonzero(row)[0]))
-
-
-def one_hot_index(value: int) -> int:
-    """-1 for 0, the bit index for a one-hot value; raises for more than one bit."""
-    if value == 0:
-        return -1
-    if value & (value - 1):
-        raise AssertionError(f"grant {value:#x} has more than one bit set")
-    return value.bit_length() - 1
 
 
 def record_trace(
@@ -63,20 +21,9 @@ def record_trace(
 ) -> Trace:
     """Run `spec`'s model closed-loop on random traffic for `cycles` cycles."""
     rng = np.random.default_rng(seed)
-    model = model_of(spec, batch=1)
     gap = max_gap if max_gap is not None else 2 * spec.n + 4
     publishers = Publishers(np.asarray([spec.transfer]), max_gap=gap, rng=rng)
-    rows = {"request": [], "last": [], "ready": [], "grant": []}
-    for _ in range(cycles):
-        request, last = publishers.request, publishers.last
-        ready = rng.random(1) >= stall
-        grant = model.step(request, last, ready)
-        publishers.advance(grant)
-        rows["request"].append(request[0])
-        rows["last"].append(last[0])
-        rows["ready"].append(ready[0])
-        rows["grant"].append(int(grant[0]))
-    return Trace(*(np.asarray(rows[k]) for k in ("request", "last", "ready", "grant")))
+    return record(model_of(spec), publishers, cycles, ready=lambda: rng.random() >= stall)
 
 
 def first_difference(expected: np.ndarray, actual: np.ndarray, trace: Trace) -> str | None:

@@ -18,15 +18,8 @@ import numpy as np
 import numpy.typing as npt
 
 from rfc.errors import RfcError
-from rfc.lib.schedulers.model.composition import CompositionModel, SchedulerModel
-from rfc.lib.schedulers.model.policies import (
-    FixedPriority,
-    LatencyOptimizedEdf,
-    LeastRecentlyUsed,
-    LeastSlackTime,
-    ResourceOptimizedEdf,
-)
-from rfc.lib.schedulers.model.statechart import Policy, StatechartModel
+from rfc.lib.schedulers.model import tree
+from rfc.lib.schedulers.model.scheduler import SchedulerModel
 from rfc.lib.schedulers.spec import (
     DEFAULT_IDLE,
     DEFAULT_TRANSFER,
@@ -41,12 +34,12 @@ from rfc.lib.schedulers.spec import (
 )
 
 __all__ = [
-    "CompositionModel",
     "SchedulerModel",
-    "StatechartModel",
     "compose_models",
+    "leaf_tree",
     "make_model",
     "model_of",
+    "tree_of",
 ]
 
 ArrayLike = int | Sequence[int] | npt.NDArray[np.integer]
@@ -66,18 +59,6 @@ def _timing(value: ArrayLike, n: int, batch: int, name: str) -> npt.NDArray[np.i
     return array
 
 
-def _policy(algorithm: Algorithm, n: int, batch: int, transfer, deadline, bits: int) -> Policy:
-    if algorithm in (Algorithm.NPFP, Algorithm.PFP):
-        return FixedPriority(preemptive=algorithm is Algorithm.PFP)
-    if algorithm is Algorithm.LRU:
-        return LeastRecentlyUsed(n, batch)
-    if algorithm is Algorithm.LOEDF:
-        return LatencyOptimizedEdf(deadline, bits)
-    if algorithm is Algorithm.ROEDF:
-        return ResourceOptimizedEdf(deadline, bits)
-    return LeastSlackTime(transfer, deadline, bits)
-
-
 def make_model(
     algorithm: str | Algorithm,
     n: int,
@@ -86,7 +67,7 @@ def make_model(
     *,
     batch: int = 1,
     counter_bits: int | None = None,
-) -> StatechartModel:
+) -> SchedulerModel:
     """Build the model of one scheduler on `batch` replicates.
 
     Args:
@@ -101,6 +82,21 @@ def make_model(
     Raises:
         RfcError: Unknown algorithm, or timing values out of range.
     """
+    return SchedulerModel(
+        leaf_tree(algorithm, n, transfer, deadline, batch=batch, counter_bits=counter_bits)
+    )
+
+
+def leaf_tree(
+    algorithm: str | Algorithm,
+    n: int,
+    transfer: ArrayLike = DEFAULT_TRANSFER,
+    deadline: ArrayLike | None = None,
+    *,
+    batch: int = 1,
+    counter_bits: int | None = None,
+) -> tree.SchedulerTree:
+    """The kernels' view of one scheduler (arguments and errors as `make_model`)."""
     chosen = parse_algorithm(algorithm)
     check_inputs(n)
     transfers = _timing(transfer, n, batch, "the transfer time")
@@ -110,8 +106,7 @@ def make_model(
     flat_t, flat_d = [int(transfers.max())], [int(deadlines.max())]
     bits = default_counter_bits(flat_t, flat_d) if counter_bits is None else counter_bits
     check_counter_bits(bits, flat_t, flat_d)
-    policy = _policy(chosen, n, batch, transfers, deadlines, bits)
-    return StatechartModel(policy, n, batch, transfers, deadlines)
+    return tree.leaf(chosen, transfers, deadlines, bits)
 
 
 def compose_models(
@@ -119,7 +114,7 @@ def compose_models(
     children: Sequence[SchedulerModel],
     *,
     counter_bits: int | None = None,
-) -> CompositionModel:
+) -> SchedulerModel:
     """Compose child models under a `parent` algorithm (as `CompositionSpec.create` does).
 
     The parent's T and D for child c are, per replicate, the child's largest T and smallest D.
@@ -129,19 +124,24 @@ def compose_models(
     transfer = np.stack([child.transfer.max(axis=1) for child in children], axis=1)
     deadline = np.stack([child.deadline.min(axis=1) for child in children], axis=1)
     batch = children[0].batch
-    top = make_model(
+    top = leaf_tree(
         parent, len(children), transfer, deadline, batch=batch, counter_bits=counter_bits
     )
-    return CompositionModel(top, children)
+    return SchedulerModel(tree.compose(top, [child.tree for child in children]))
 
 
 def model_of(spec: AnySchedulerSpec, batch: int = 1) -> SchedulerModel:
     """The model of a generated scheduler (or composition), with its exact constants."""
+    return SchedulerModel(tree_of(spec, batch))
+
+
+def tree_of(spec: AnySchedulerSpec, batch: int = 1) -> tree.SchedulerTree:
+    """The compiled kernels' view of a generated scheduler (or composition) on R replicates."""
     if isinstance(spec, CompositionSpec):
-        children = [model_of(child, batch) for child in spec.children]
-        return CompositionModel(model_of(spec.parent, batch), children)
+        children = [tree_of(child, batch) for child in spec.children]
+        return tree.compose(tree_of(spec.parent, batch), children)
     assert isinstance(spec, SchedulerSpec)
-    return make_model(
+    return leaf_tree(
         spec.algorithm,
         spec.n,
         spec.transfer,

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from rfc.lib.schedulers.model.statechart import BoolArray, IntArray
+from rfc.lib.schedulers.model.tree import BoolArray, IntArray
 
 
 class Publishers:

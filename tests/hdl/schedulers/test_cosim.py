@@ -9,14 +9,11 @@ grants.
 
 from __future__ import annotations
 
-import json
-
-import numpy as np
 import pytest
 
-from rfc.lib.schedulers.generate import generate_hdl
+from rfc.dse.verify import replay_in_ghdl
 from rfc.lib.schedulers.spec import SchedulerSpec
-from rfc.toolchain import CosimError, run_cocotb
+from rfc.toolchain import CosimError
 from tests.support.scheduler_properties import PropertyMonitor
 from tests.support.scheduler_traces import (
     COSIM_INPUTS,
@@ -27,19 +24,6 @@ from tests.support.scheduler_traces import (
 )
 
 CYCLES = 2_500
-REPLAY = "tests.hdl.schedulers.replay"
-
-
-def replay_in_ghdl(spec, trace, directory):
-    files = generate_hdl(spec, directory / "hdl", "dut")
-    trace.save(directory / "trace.json")
-    grants_path = directory / "grants.json"
-    env = {"SCHED_TRACE": str(directory / "trace.json"), "SCHED_GRANTS": str(grants_path)}
-    try:
-        run_cocotb(files, "dut", REPLAY, directory / "sim", env=env)
-    finally:
-        grants = np.asarray(json.loads(grants_path.read_text())) if grants_path.exists() else None
-    return grants
 
 
 @pytest.mark.slow

@@ -1,6 +1,6 @@
 """quat_myhdl.yaml in Python: the MyHDL accelerator carries its own annotation."""
 
-from quat_to_euler import QuaternionToEuler
+from quat_model import QuaternionToEuler
 
 import rfc
 

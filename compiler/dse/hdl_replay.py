@@ -1,7 +1,8 @@
 """cocotb test: replay a recorded trace on a generated scheduler and compare every grant.
 
-The pytest side (test_cosim.py) records the trace from the model, converts the scheduler to
-VHDL and runs this module in GHDL with the trace's path in SCHED_TRACE. Every cycle the test
+`rfc.dse.verify.replay_in_ghdl` (used by `rfc dse --verify-hdl` and the co-simulation tests)
+converts the scheduler to VHDL and runs this module in GHDL with the trace's path in
+SCHED_TRACE. Every cycle the test
 drives request/last/ready, lets the logic settle, reads the grant and checks it is one-hot (or
 zero) and equal to the model's; the grants are written to SCHED_GRANTS for the property checks.
 """
@@ -15,11 +16,12 @@ import cocotb
 from cocotb.clock import Clock
 from cocotb.triggers import ClockCycles, ReadOnly, RisingEdge
 
-from tests.support.scheduler_traces import one_hot_index
+from rfc.dse.trace import one_hot_index
 
 
 @cocotb.test()
-async def replay_trace(dut):
+async def replay_trace(dut) -> None:
+    """Drive the trace's inputs cycle by cycle; the grant must equal the recorded one."""
     with open(os.environ["SCHED_TRACE"]) as source:
         trace = json.load(source)
     cocotb.start_soon(Clock(dut.clk, 10, unit="ns").start())

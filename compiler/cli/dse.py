@@ -1,0 +1,259 @@
+"""`rfc dse [SPEC]`: the paper's scheduler evaluation, or a scheduler recommended for a project.
+
+Without SPEC it sweeps the schedulers over the datasets (DESIGN.md §7), prints the metrics and
+writes tables, figures and an HTML report into DIR; `--verify-hdl` re-runs sampled points on
+the generated hardware in GHDL. With SPEC it ranks the candidate schedulers for the project's
+publishers by the objective and prints the recommendation with its reasons.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+from rich.console import Console
+from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+from rich.table import Table
+
+from rfc.errors import RfcError
+
+dse_app = typer.Typer()
+
+#: Smallest and largest number of accelerators a sweep accepts.
+MIN_N, MAX_N = 2, 1024
+
+SpecArgument = Annotated[
+    Path | None,
+    typer.Argument(
+        metavar="[SPEC]",
+        help="A project spec: recommend its scheduler. Without it: the paper's sweep.",
+    ),
+]
+
+
+def _sizes(text: str | None) -> tuple[int, ...]:
+    from rfc.dse.datasets import SIZES
+
+    if text is None:
+        return SIZES
+    try:
+        sizes = tuple(sorted({int(part) for part in text.split(",") if part.strip()}))
+    except ValueError:
+        raise RfcError(
+            f"--n '{text}' is not a comma-separated list of integers", hint="for example --n 8,16"
+        ) from None
+    if not sizes or min(sizes) < MIN_N or max(sizes) > MAX_N:
+        raise RfcError(
+            f"--n '{text}': each N must be between {MIN_N} and {MAX_N}",
+            hint=f"the paper's sizes are {','.join(map(str, SIZES))}",
+        )
+    return sizes
+
+
+def _sweep_only(options: dict[str, object]) -> None:
+    """With SPEC, options that only shape the paper's sweep are a mistake, not silently ignored."""
+    given = [name for name, value in options.items() if value not in (None, False)]
+    if given:
+        raise RfcError(
+            f"{', '.join(given)} appl{'ies' if len(given) == 1 else 'y'} to the paper's sweep, "
+            "not to a project's recommendation",
+            hint="drop SPEC to run the sweep, or these options to rank the project's schedulers",
+        )
+
+
+@dse_app.command("dse")
+def dse(
+    spec: SpecArgument = None,
+    n: Annotated[
+        str | None,
+        typer.Option("--n", metavar="LIST", help="Accelerator counts, e.g. 8,16 (default 2…256)."),
+    ] = None,
+    dataset: Annotated[
+        str | None,
+        typer.Option(help="Only this dataset: large, cc1, cc2, cc3 or cc4 (default: all five)."),
+    ] = None,
+    replicates: Annotated[
+        int | None,
+        typer.Option(min=2, help="Replicates per point (default: 200 large, 10 corner cases)."),
+    ] = None,
+    jobs: Annotated[
+        int | None, typer.Option(min=1, help="Worker processes (default: one per core).")
+    ] = None,
+    output: Annotated[
+        Path | None,
+        typer.Option("--output", "-o", metavar="DIR", help="Where results go (sweep: dse/)."),
+    ] = None,
+    as_json: Annotated[bool, typer.Option("--json", help="Print one JSON document.")] = False,
+    verify_hdl: Annotated[
+        bool,
+        typer.Option(
+            "--verify-hdl",
+            help="Re-run each algorithm's first replicate at the smallest N in GHDL; fail on "
+            "any difference in the metrics.",
+        ),
+    ] = False,
+    no_synth: Annotated[
+        bool, typer.Option("--no-synth", help="Skip LUT/FF (Figure 6, Table 3).")
+    ] = False,
+    objective: Annotated[
+        str | None,
+        typer.Option(
+            metavar="CRITERIA",
+            help="Project ranking, best first: completed, missed, lateness, max_lateness, "
+            "response, preemptions, utilization, lut, ff (default "
+            "completed,missed,max_lateness,lut).",
+        ),
+    ] = None,
+    seed: Annotated[int | None, typer.Option(help="Seed of the datasets (default 0).")] = None,
+) -> None:
+    """Explore the schedulers (paper §7.2), or recommend one for the project SPEC."""
+    from rfc.dse.engine import default_jobs
+
+    workers = jobs or default_jobs()
+    if spec is not None:
+        _sweep_only(
+            {"--n": n, "--dataset": dataset, "--replicates": replicates,
+             "--verify-hdl": verify_hdl, "--no-synth": no_synth, "--seed": seed}
+        )  # fmt: skip
+        _project(spec, objective, output, as_json)
+        return
+    if objective is not None:
+        raise RfcError(
+            "--objective ranks a project's schedulers; give the project's SPEC",
+            hint="rfc dse examples/sensor_hub/SensorHub.yaml --objective completed,lut",
+        )
+    _sweep(
+        _sizes(n), dataset, replicates, workers, output or Path("dse"), as_json, verify_hdl,
+        not no_synth, seed or 0,
+    )  # fmt: skip
+
+
+def _sweep(sizes, dataset, replicates, jobs, output, as_json, verify, synthesis, seed) -> None:
+    from rfc.dse.datasets import DATASETS
+    from rfc.dse.datasets import dataset as find_dataset
+    from rfc.dse.output import write_sweep
+    from rfc.dse.sweep import Plan, run_sweep
+    from rfc.dse.tables import document
+
+    names = (find_dataset(dataset).name,) if dataset else tuple(DATASETS)
+    plan = Plan(datasets=names, sizes=sizes, replicates=replicates, seed=seed)
+    console = Console(stderr=True, highlight=False)
+    with _progress(console) as progress:
+        task = progress.add_task("simulating", total=1.0)
+        result = run_sweep(
+            plan,
+            jobs,
+            synthesis=False,
+            advance=lambda share: progress.advance(task, share),
+        )
+        if synthesis:
+            from rfc.dse.sweep import synthesized_resources
+
+            progress.add_task("synthesizing (cached)", total=None)
+            result = type(result)(plan, result.points, synthesized_resources(sizes, jobs))
+        checks = []
+        if verify:
+            from rfc.dse.verify import verify_hdl
+
+            progress.add_task("verifying in GHDL", total=None)
+            checks = verify_hdl(result, jobs)
+    write_sweep(result, checks, output)
+    report: dict[str, Any] = {**document(result), "output": str(output)}
+    if verify:
+        report["verify_hdl"] = [check.as_dict() for check in checks]
+    if as_json:
+        print(json.dumps(report, indent=1))
+    else:
+        _print_sweep(result, Console(highlight=False))
+        print(f"wrote tables, figures and report.html into {output}", file=sys.stderr)
+    failed = [check for check in checks if not check.equal]
+    if failed:
+        details = "; ".join(f"{c.scheduler} N={c.n}: {c.error or 'metrics differ'}" for c in failed)
+        raise RfcError(
+            f"--verify-hdl: the generated hardware disagrees with the DSE on {len(failed)} of "
+            f"{len(checks)} points: {details}",
+            hint=f"compare dse and ghdl values in {output}/verify.json",
+        )
+    if verify and not as_json:
+        print(f"--verify-hdl: {len(checks)} points equal in GHDL", file=sys.stderr)
+
+
+def _progress(console: Console) -> Progress:
+    return Progress(
+        TextColumn("{task.description}"),
+        BarColumn(),
+        TextColumn("{task.percentage:>3.0f}%"),
+        TimeElapsedColumn(),
+        console=console,
+        transient=True,
+        disable=not console.is_terminal,
+    )
+
+
+#: Columns of the printed sweep: metric and short heading.
+_SHOWN = (
+    ("completed", "completed"),
+    ("granted", "granted"),
+    ("preemptions", "preempt."),
+    ("response", "response"),
+    ("lateness", "lateness"),
+    ("utilization", "U"),
+)
+
+
+def _print_sweep(result, console: Console) -> None:
+    for name in result.plan.datasets:
+        table = Table(title=f"dataset {name}: mean ±95 % CI over replicates (cycles)")
+        table.add_column("scheduler")
+        table.add_column("N", justify="right")
+        for _, heading in _SHOWN:
+            table.add_column(heading, justify="right")
+        for point in (p for p in result.points if p.dataset == name):
+            cells = []
+            for metric, _ in _SHOWN:
+                s = point.summary(metric)
+                cells.append("n/a" if s.mean != s.mean else f"{s.mean:.3g} ±{s.ci95:.2g}")
+            table.add_row(point.scheduler, str(point.n), *cells)
+        console.print(table)
+
+
+def _project(spec: Path, objective: str | None, output: Path | None, as_json: bool) -> None:
+    from rfc.driver import compile_spec
+    from rfc.dse.objective import DEFAULT_OBJECTIVE, parse_objective
+    from rfc.dse.output import recommendation_document, write_recommendation
+    from rfc.dse.project import recommend
+
+    criteria = parse_objective(objective or ",".join(DEFAULT_OBJECTIVE))
+    design = compile_spec(str(spec))
+    recommendation = recommend(design, criteria)
+    report = recommendation_document(design.project.name, recommendation)
+    if output is not None:
+        write_recommendation(report, output)
+    if as_json:
+        print(json.dumps(report, indent=1))
+        return
+    console = Console(highlight=False)
+    traffic = recommendation.traffic
+    console.print(
+        f"[bold]{design.project.name}[/]: {traffic.n} publishers, {traffic.cycles} cycles "
+        f"simulated; objective {', '.join(c.name for c in criteria)}"
+    )
+    table = Table()
+    table.add_column("rank", justify="right")
+    table.add_column("scheduler")
+    for criterion in criteria:
+        table.add_column(criterion.label, justify="right")
+    for place, candidate in enumerate(recommendation.ranking, start=1):
+        values = [criterion.describe(candidate.value(criterion)) for criterion in criteria]
+        values = [
+            "not synthesized" if v == "undefined" and c.resource else v
+            for v, c in zip(values, criteria, strict=True)
+        ]
+        table.add_row(str(place), candidate.scheduler, *values)
+    console.print(table)
+    console.print(f"[bold]recommended: {recommendation.scheduler}[/]")
+    for reason in recommendation.reasons:
+        console.print(f"  - {reason}")

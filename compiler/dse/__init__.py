@@ -1,0 +1,7 @@
+"""Design-space exploration of the schedulers (paper §7.2, DESIGN.md §7).
+
+`datasets` draws the traffic, `kernel` simulates it on the compiled scheduler kernels and
+aggregates the metrics as it goes, `engine` runs points in parallel, `metrics` summarizes them
+(mean and 95 % confidence interval), `project` and `objective` recommend a scheduler for a
+spec, and `tables`, `plots` and `report` write the results.
+"""

@@ -1,0 +1,73 @@
+"""Writing DSE results into their directory at once (or not at all), and the project document.
+
+A sweep writes ``results.json`` (the `--json` document), ``results.csv``, ``resources.csv``,
+``table3.md``, ``figure6…14`` and ``table3`` as PNG and SVG, ``report.html`` and, with
+`--verify-hdl`, ``verify.json``. A project writes ``recommendation.json``.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from collections.abc import Sequence
+from pathlib import Path
+
+from rfc.dse.objective import Candidate
+from rfc.dse.plots import write_figures
+from rfc.dse.project import Recommendation
+from rfc.dse.report import render
+from rfc.dse.sweep import SweepResult
+from rfc.dse.tables import document, resources_csv, results_csv, table3_markdown
+from rfc.dse.verify import Check
+from rfc.lower.writer import replace_directory
+
+
+def write_sweep(result: SweepResult, checks: Sequence[Check], directory: Path) -> None:
+    """Replace `directory` with the sweep's tables, figures and report."""
+
+    def fill(staging: Path) -> None:
+        (staging / "results.json").write_text(json.dumps(document(result), indent=1) + "\n")
+        (staging / "results.csv").write_text(results_csv(result))
+        if result.resources:
+            (staging / "resources.csv").write_text(resources_csv(result))
+            (staging / "table3.md").write_text(table3_markdown(result))
+        figures = write_figures(result, staging)
+        (staging / "report.html").write_text(render(result, figures), encoding="utf-8")
+        if checks:
+            verified = [check.as_dict() for check in checks]
+            (staging / "verify.json").write_text(json.dumps(verified, indent=1) + "\n")
+
+    replace_directory(directory, str(directory), fill, command="rfc dse")
+
+
+def _candidate(candidate: Candidate) -> dict[str, object]:
+    metrics = {k: None if math.isnan(v) else v for k, v in candidate.metrics.items()}
+    return {"scheduler": candidate.scheduler, "metrics": metrics, **candidate.resources}
+
+
+def recommendation_document(project: str, recommendation: Recommendation) -> dict[str, object]:
+    """The `rfc dse SPEC --json` document."""
+    traffic = recommendation.traffic
+    return {
+        "project": project,
+        "recommended": recommendation.scheduler,
+        "reasons": list(recommendation.reasons),
+        "objective": [criterion.name for criterion in recommendation.objective],
+        "cycles": traffic.cycles,
+        "publishers": [
+            {"name": name, "transfer_beats": t, "period": p, "deadline": d}
+            for name, t, p, d in zip(
+                traffic.publishers, traffic.transfer, traffic.period, traffic.deadline, strict=True
+            )
+        ],
+        "ranking": [_candidate(candidate) for candidate in recommendation.ranking],
+    }
+
+
+def write_recommendation(report: dict[str, object], directory: Path) -> None:
+    """Replace `directory` with ``recommendation.json``."""
+
+    def fill(staging: Path) -> None:
+        (staging / "recommendation.json").write_text(json.dumps(report, indent=1) + "\n")
+
+    replace_directory(directory, str(directory), fill, command="rfc dse")

@@ -32,6 +32,7 @@ from rfc.lower.system.components import (
 )
 from rfc.lower.system.interfaces import MESSAGE
 from rfc.lower.system.top import CLOCK, RESET_N, Interface, Terminal, TopBuilder, wire_connection
+from rfc.passes.resolve_scheduler import ResolveScheduler
 
 #: The manager's cell label.
 MANAGER = "manager"
@@ -95,8 +96,7 @@ def scheduler_spec(scheduler: Scheduler) -> AnySchedulerSpec | None:
         i.deadline or i.period or t + DEFAULT_IDLE
         for i, t in zip(scheduler.inputs, transfer, strict=True)
     ]
-    algorithm = "LRU" if scheduler.algorithm == "auto" else scheduler.algorithm
-    return SchedulerSpec.create(algorithm, len(transfer), transfer, deadline)
+    return SchedulerSpec.create(scheduler.algorithm, len(transfer), transfer, deadline)
 
 
 def generate_system(
@@ -108,6 +108,8 @@ def generate_system(
         RfcError: Something in the design cannot become hardware (an accelerator off the port
             convention, an unsupported message shape or fan-out).
     """
+    if design.infrastructure and design.infrastructure.scheduler.algorithm == "auto":
+        design = ResolveScheduler().apply(design)  # rfc sim compiles without the build passes
     infrastructure = design.infrastructure
     assert infrastructure is not None, "lower a design after derive-infrastructure"
     limits = limits or Limits()

@@ -81,7 +81,9 @@ def test_rebuild_replaces_the_whole_output_directory(tmp_path):
     assert run_rfc("build", LISTING_1, "-o", out, "--emit-ir").returncode == 0
     (out / "stale.vhd").write_text("-- from an older build\n")
     assert run_rfc("build", LISTING_1, "-o", out).returncode == 0
-    assert sorted(p.name for p in out.iterdir()) == [".rfc-build", "report.md"]
+    names = sorted(p.name for p in out.iterdir())
+    assert names == [".rfc-build", "build.sh", "hls", "hw", "report.md", "vivado"]
+    assert not (out / "model.yaml").exists()
     assert sorted(p.name for p in tmp_path.iterdir()) == ["out"]
 
 

@@ -199,18 +199,20 @@ def test_myhdl_backend_needs_a_myhdl_design(tmp_path, small_bag):
 
 
 def test_a_logic_with_an_hls_core_cannot_be_simulated_and_says_why(tmp_path):
-    bag = tmp_path / "q.mcap"
-    types = message_types("ros2")
-    quaternion = types.build("geometry_msgs/msg/Quaternion", {"w": 1.0})
+    bag = tmp_path / "q.bag"
+    types = message_types("ros1")
+    quaternion = types.build(
+        "geometry_msgs/msg/Quaternion", {"x": 0.0, "y": 0.0, "z": 0.0, "w": 1.0}
+    )
     data = types.serialize(quaternion, "geometry_msgs/msg/Quaternion")
-    write_bag(bag, types, {"/imu/orientation": "geometry_msgs/msg/Quaternion"},
-              [("/imu/orientation", 1, data)])  # fmt: skip
-    spec = ROOT / "examples/rotation_converter/RotationConverterNode.yaml"
-    result = run_rfc("sim", spec, "--bag", bag, "--out", tmp_path / "o.mcap", cwd=ROOT)
+    write_bag(bag, types, {"/Quaternion_sub": "geometry_msgs/msg/Quaternion"},
+              [("/Quaternion_sub", 1, data)])  # fmt: skip
+    spec = ROOT / "examples/rotation_converter/RotationConverterNode.yaml"  # Listing 1: HLS
+    result = run_rfc("sim", spec, "--bag", bag, "--out", tmp_path / "o.bag", cwd=ROOT)
     assert result.returncode == 1
     assert "HLS cores (QuaternionToEuler)" in result.stderr
     assert "Traceback" not in result.stderr
-    assert not (tmp_path / "o.mcap").exists()
+    assert not (tmp_path / "o.bag").exists()
 
 
 def test_a_software_function_failing_in_the_simulator_is_one_error(tmp_path, small_bag):

@@ -45,6 +45,13 @@ def build(
             "--estimate", help="Estimate the logic's LUT/FF with Yosys (xc7) for report.md."
         ),
     ] = False,
+    no_hardware: Annotated[
+        bool,
+        typer.Option(
+            "--no-hardware",
+            help="Skip the logic and its Vivado/HLS scripts: model, software and report only.",
+        ),
+    ] = False,
     dump_ir_after: Annotated[
         list[str] | None,
         typer.Option(
@@ -77,7 +84,7 @@ def build(
             sys.stdout.write(f"# IR after {name}\n{format_ir(design)}")
 
     design = compile_spec(str(spec), after=dump, pipeline=BUILD_PIPELINE)
-    options = BuildOptions(emit_ir=emit_ir, estimate=estimate)
+    options = BuildOptions(emit_ir=emit_ir, estimate=estimate, hardware=not no_hardware)
     artifacts = lower(design, options, spec.read_text(encoding="utf-8"))
     write_artifacts(artifacts, output, str(output))
     names = ", ".join(a.path for a in artifacts)

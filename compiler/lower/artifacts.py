@@ -16,6 +16,8 @@ class BuildOptions:
     """Write the holistic model (``model.yaml``)."""
     estimate: bool = False
     """Estimate the logic's LUT/FF with Yosys for the report."""
+    hardware: bool = True
+    """Generate the logic and its vendor scripts (off: model, software and report only)."""
 
 
 @dataclass(frozen=True)

@@ -31,7 +31,7 @@ def hardware(design: Design, options: BuildOptions) -> Iterable[Artifact | Repor
     """Every hardware artifact of a design whose logic has anything in it."""
     infrastructure = design.infrastructure
     assert infrastructure is not None
-    if not infrastructure.subscribers and not infrastructure.publishers:
+    if not options.hardware or not (infrastructure.subscribers or infrastructure.publishers):
         return
     with tempfile.TemporaryDirectory(prefix="rfc-hw-") as scratch:
         system = generate_system(design, Path(scratch))

@@ -165,7 +165,7 @@ def test_project_recommendation_with_reasons(tmp_path):
 
 
 def test_build_uses_the_recommendation(tmp_path):
-    result = run_rfc("build", HUB, "-o", tmp_path / "build")
+    result = run_rfc("build", HUB, "-o", tmp_path / "build", "--no-hardware")
     assert result.returncode == 0, result.stderr
     report = (tmp_path / "build" / "report.md").read_text()
     assert "## Scheduler: LOEDF" in report

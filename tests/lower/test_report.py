@@ -17,8 +17,9 @@ LISTING_1 = ROOT / "examples" / "rotation_converter" / "RotationConverterNode.ya
 def test_lowering_produces_the_model_only_when_asked():
     design = compile_spec(LISTING_1)
     spec = LISTING_1.read_text()
-    assert [a.path for a in lower(design, BuildOptions(), spec)] == ["report.md"]
-    model, report = lower(design, BuildOptions(emit_ir=True), spec)
+    software_only = BuildOptions(hardware=False)
+    assert [a.path for a in lower(design, software_only, spec)] == ["report.md"]
+    model, report = lower(design, BuildOptions(emit_ir=True, hardware=False), spec)
     assert (model.path, model.kind, model.text) == (
         "model.yaml",
         "holistic model",
@@ -30,7 +31,7 @@ def test_lowering_produces_the_model_only_when_asked():
 
 def test_report_lists_buffers_when_a_publisher_needs_them(tmp_path):
     design = compile_yaml(tmp_path, pass_through("tf2_msgs/TFMessage"))
-    report = lower(design, BuildOptions(), "project: {}\n")[-1]
+    report = lower(design, BuildOptions(hardware=False), "project: {}\n")[-1]
     assert "## Buffers" in report.text
     assert "| `Pub` | transforms |" in report.text
     assert "| publisher | 0 | `Pub` | `/Pub` | tf2_msgs/msg/TFMessage |" in report.text

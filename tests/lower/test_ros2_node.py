@@ -13,7 +13,7 @@ from tests.support.cli import run_rfc
 def test_build_writes_the_node_and_its_configuration(tmp_path):
     spec = system_copy(tmp_path, "pose_mixed.yaml")
     out = tmp_path / "build"
-    result = run_rfc("build", spec, "-o", out)
+    result = run_rfc("build", spec, "-o", out, "--no-hardware")
     assert result.returncode == 0, result.stderr
     config = json.loads((out / "sw" / "pose_mixed_node.json").read_text())
     assert config["spec"] == str(spec)
@@ -41,7 +41,7 @@ def test_build_writes_the_node_and_its_configuration(tmp_path):
 def test_the_node_compiles_the_spec_then_needs_ros_2(tmp_path):
     spec = system_copy(tmp_path, "pose_mixed.yaml")
     out = tmp_path / "build"
-    assert run_rfc("build", spec, "-o", out).returncode == 0
+    assert run_rfc("build", spec, "-o", out, "--no-hardware").returncode == 0
     node = out / "sw" / "pose_mixed_node.py"
     result = subprocess.run(
         [sys.executable, node, "--mm2s", "/dev/null", "--s2mm", "/dev/null"],
@@ -56,5 +56,5 @@ def test_the_node_compiles_the_spec_then_needs_ros_2(tmp_path):
 def test_ros1_projects_get_no_node(tmp_path, examples_dir):
     out = tmp_path / "build"
     spec = examples_dir / "rotation_converter" / "RotationConverterNode.yaml"
-    assert run_rfc("build", spec, "-o", out).returncode == 0
+    assert run_rfc("build", spec, "-o", out, "--no-hardware").returncode == 0
     assert not (out / "sw").exists()

@@ -20,7 +20,7 @@ from rfc.lower.artifacts import Artifact, BuildOptions, ReportSection
 from rfc.lower.block_design import block_design, tcl_list, tcl_word
 from rfc.lower.system.accelerators import HlsCore
 from rfc.lower.system.generate import SystemHardware, generate_system
-from rfc.lower.system.measures import latency_section, resources_section
+from rfc.lower.system.measures import buffers_section, latency_section, resources_section
 from rfc.lower.vivado import VivadoProject, vivado_artifacts
 
 #: Where the generated VHDL goes in the build directory.
@@ -37,6 +37,8 @@ def hardware(design: Design, options: BuildOptions) -> Iterable[Artifact | Repor
         system = generate_system(design, Path(scratch))
         yield from _vhdl(system)
         yield latency_section(design, system)
+        if system.buffers:
+            yield buffers_section(system)
         if options.estimate:
             yield resources_section(system)
     hdl_files = [f"{HW}/{f.name}" for f in system.files]

@@ -1,24 +1,22 @@
 """Loopback: a subscriber wired to a publisher of the same plan, for `rfc msg loopback`.
 
 The ports of the two converters share their names, so the message record connects directly.
-Sub-streams and element channels go through FIFOs: the subscriber hands a message's strings,
-sequences and elements over while it parses, the publisher takes them only once it has the
-message's record (it needs every length to compute the frame length), so the FIFOs hold one
-message's worth — sized from the plan's maxima. The entity, ``rfc_loopback``, has fixed ports
+Sub-streams and element channels go through the publisher's buffers
+(`rfc.lib.converters.buffers`): the subscriber hands a message's strings, sequences and
+elements over while it parses, before its record. The entity, ``rfc_loopback``, has fixed ports
 (`loopback_ports`) so that one static testbench drives every loopback.
 """
 
 from __future__ import annotations
 
-from math import prod
 from typing import Any
 
-from myhdl import ConcatSignal, Signal, always_comb, block, intbv
+from myhdl import Signal, block, intbv
 
-from rfc.lib.converters.fifo import fifo
+from rfc.lib.converters.buffers import stream_buffers
 from rfc.lib.converters.ports import COUNTER_BITS, Direction, Port, PortRole, Side, ports_of
 from rfc.lib.converters.publisher import rfc_publisher
-from rfc.lib.converters.steps import ROOT, Loop, Payload, Plan
+from rfc.lib.converters.steps import ROOT, Plan
 from rfc.lib.converters.subscriber import rfc_subscriber
 from rfc.lib.converters.toplevel import port_signals
 from rfc.lib.converters.wiring import follow
@@ -53,39 +51,6 @@ def loopback_ports(width: int) -> tuple[Port, ...]:
     return tuple(ports)
 
 
-def _instances(plan: Plan, channel: int) -> int:
-    """How many times the steps of a channel can run per message: its loops' maxima."""
-    counts = []
-    while channel:
-        loop = next(s for s in plan.steps if isinstance(s, Loop) and s.element_channel == channel)
-        counts.append(loop.maximum)
-        channel = loop.channel
-    return prod(counts)
-
-
-@block
-def split(word: Any, low: int, target: Any) -> Any:
-    """Drive `target` with the bits of `word` from `low` up."""
-    high = low + len(target)
-
-    @always_comb
-    def extract() -> None:
-        target.next = word[high:low]
-
-    return extract
-
-
-@block
-def split_bit(word: Any, low: int, target: Any) -> Any:
-    """Drive the single-bit `target` with bit `low` of `word`."""
-
-    @always_comb
-    def extract() -> None:
-        target.next = word[low]
-
-    return extract
-
-
 @block
 def rfc_loopback(plan: Plan, **ports: Any) -> Any:
     """The subscriber and publisher of `plan`, wired through FIFOs; `ports`: `loopback_ports`."""
@@ -106,43 +71,7 @@ def rfc_loopback(plan: Plan, **ports: Any) -> Any:
     if plan.store_and_forward:
         pub["error_count"] = Signal(intbv(0)[COUNTER_BITS:])  # overflows: none, by sizing
     blocks = [follow(sub["msg_valid"], ports["fields_valid"])]
-    for step in plan.steps:
-        if isinstance(step, Payload) and step.stream:
-            name = step.stream
-            beat = len(sub[f"{name}_tdata"]) // 8
-            depth = (
-                _instances(plan, step.channel) * -(-step.maximum * step.element_size // beat) + 1
-            )
-            blocks.append(
-                fifo(clk, rst, sub[f"{name}_tdata"], sub[f"{name}_tvalid"], sub[f"{name}_tready"],
-                     pub[f"{name}_tdata"], pub[f"{name}_tvalid"], pub[f"{name}_tready"], depth)
-            )  # fmt: skip
-        elif isinstance(step, Loop) and step.count_port:
-            name = plan.channels[step.element_channel].name
-            data = [
-                p.name
-                for p in ports_of(plan, Side.SUBSCRIBER)
-                if p.group == name and p.role in _DATA
-            ]
-            # One word per element (a lone bool padded: ConcatSignal needs two parts).
-            parts = [sub[p] for p in reversed(data)] or [intbv(0)[1:]]
-            word_in = (
-                ConcatSignal(intbv(0)[1:], *parts) if len(parts) == 1 else ConcatSignal(*parts)
-            )
-            word_out = Signal(intbv(0)[len(word_in) :])
-            depth = _instances(plan, step.element_channel) + 1
-            blocks.append(
-                fifo(clk, rst, word_in, sub[f"{name}_valid"], sub[f"{name}_ready"],
-                     word_out, pub[f"{name}_valid"], pub[f"{name}_ready"], depth)
-            )  # fmt: skip
-            low = 0
-            for port in data:
-                target = pub[port]
-                if isinstance(target.val, bool):
-                    blocks.append(split_bit(word_out, low, target))
-                else:
-                    blocks.append(split(word_out, low, target))
-                low += len(target)
+    blocks.append(stream_buffers(plan, clk, rst, sub, pub))
     blocks.append(rfc_subscriber(plan, clk=clk, rst=rst, **sub))
     blocks.append(rfc_publisher(plan, clk=clk, rst=rst, **pub))
     return blocks

@@ -9,13 +9,14 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
 from myhdl import ToVHDLWarning
 
 from rfc.ir.infrastructure import Converter
+from rfc.lib.converters.buffers import Buffer, buffered_ports, buffered_publisher, buffers_of
 from rfc.lib.converters.build import generate
 from rfc.lib.converters.limits import Limits
 from rfc.lib.converters.plan import plan
@@ -36,10 +37,12 @@ class Component:
     Attributes:
         entity: Its interface.
         files: Its VHDL files in compile order (MyHDL's package first, where it needs one).
+        buffers: The FIFOs it holds for a message's strings and sequences.
     """
 
     entity: EntityDecl
     files: tuple[Path, ...] = ()
+    buffers: tuple[Buffer, ...] = ()
 
 
 def entity_of(name: str, ports: Sequence[Port]) -> EntityDecl:
@@ -70,12 +73,21 @@ def convert(
 def converter_component(
     converter: Converter, side: Side, directory: Path, name: str, limits: Limits
 ) -> Component:
-    """A subscriber or publisher converter of the model."""
+    """A subscriber or publisher converter of the model.
+
+    A publisher that takes strings or sequences comes with its buffers (`rfc.lib.converters.
+    buffers`): the producer may hand them over before the message's record.
+    """
+    converter_plan = plan(converter.layout, converter.bus_width, limits)
+    buffers = buffers_of(converter_plan) if side is Side.PUBLISHER else ()
+    if buffers:
+        what = f"publisher of {converter.layout.display_name} with its buffers (rfc)"
+        ports = buffered_ports(converter_plan)
+        component = convert(name, ports, buffered_publisher, directory, what, plan=converter_plan)
+        return replace(component, buffers=buffers)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", UserWarning)
-        generated = generate(
-            plan(converter.layout, converter.bus_width, limits), side, directory, name
-        )
+        generated = generate(converter_plan, side, directory, name)
     return Component(entity_of(name, generated.ports), tuple(generated.vhdl))
 
 

@@ -52,6 +52,40 @@ def latency_section(design: Design, system: SystemHardware) -> ReportSection:
     return ReportSection("Latencies", tuple(lines))
 
 
+#: Block RAM 36 Kb aspect ratios of the 7 series (width, depth), parity bits used as data.
+_BRAM36 = ((72, 512), (36, 1024), (18, 2048), (9, 4096), (4, 8192), (2, 16384), (1, 32768))
+
+
+def bram36(bits: int, words: int) -> int:
+    """The fewest 36 Kb block RAMs a memory of `words` words of `bits` fits in."""
+    return min(math.ceil(bits / w) * math.ceil(words / d) for w, d in _BRAM36)
+
+
+def buffers_section(system: SystemHardware) -> ReportSection:
+    """The publishers' buffers: what they hold and how much block RAM they take."""
+    rows: list[list[object]] = []
+    for block, buffers in system.buffers.items():
+        for buffer in buffers:
+            kib = f"{buffer.size_bits / 8192:.1f}"
+            blocks = bram36(buffer.bits, buffer.words)
+            rows.append([f"`{block}`", f"`{buffer.channel}`", buffer.words, buffer.bits, kib])
+            rows[-1].append(blocks)
+    total = sum(int(row[5]) for row in rows)
+    lines = [
+        "A publisher takes a message's strings and sequences only after its other fields (it "
+        "needs every length for the frame length), so each gets a FIFO that holds one message "
+        f"at the configured maxima. Together: {total} block RAMs of 36 Kb (an xc7z020 has 140); "
+        "lower the maxima to shrink them.",
+        "",
+        *markdown_table(
+            ["publisher", "holds", "words", "bits", "KiB", "BRAM36"],
+            rows,
+            (False, False, True, True, True, True),
+        ),
+    ]
+    return ReportSection("Buffers", tuple(lines))
+
+
 def resources_section(system: SystemHardware) -> ReportSection:
     """LUT/FF/DSP/BRAM of the whole logic from GHDL synthesis and Yosys ``synth_xilinx``.
 

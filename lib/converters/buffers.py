@@ -1,0 +1,157 @@
+"""Buffers in front of a publisher: one message's strings, sequences and elements.
+
+A publisher takes a message's record first — it needs every length to compute the frame length
+before the first payload beat — and its strings, sequences and sequence elements after. A
+producer that hands those over before its record (a subscriber does, while it parses; so does
+an accelerator that passes them through) would stall against it. `stream_buffers` puts a FIFO
+on each sub-stream and element channel, sized from the plan's maxima to hold one message;
+`buffered_publisher` is a publisher with those FIFOs inside, with the publisher's own ports.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from math import prod
+from typing import Any
+
+from myhdl import ConcatSignal, Signal, always_comb, block, intbv
+
+from rfc.lib.converters.fifo import fifo
+from rfc.lib.converters.ports import Port, PortRole, Side, dma_ports, ports_of
+from rfc.lib.converters.publisher import rfc_publisher
+from rfc.lib.converters.steps import Loop, Payload, Plan
+from rfc.lib.converters.toplevel import port_signals
+
+_DATA = (PortRole.FIELD, PortRole.LENGTH, PortRole.COUNT)
+
+
+@dataclass(frozen=True)
+class Buffer:
+    """One FIFO in front of a publisher.
+
+    Attributes:
+        channel: The sub-stream or element channel it holds.
+        words: Its memory's depth: one message's worth (the FIFO's output register holds one
+            more).
+        bits: Bits per word.
+    """
+
+    channel: str
+    words: int
+    bits: int
+
+    @property
+    def size_bits(self) -> int:
+        """Its memory in bits."""
+        return self.words * self.bits
+
+
+def buffers_of(plan: Plan) -> tuple[Buffer, ...]:
+    """The FIFOs a publisher of `plan` needs (none when it takes no strings or sequences)."""
+    ports = ports_of(plan, Side.PUBLISHER)
+    found = []
+    for step in plan.steps:
+        if isinstance(step, Payload) and step.stream:
+            bits = next(p.bits for p in ports if p.name == f"{step.stream}_tdata")
+            beats = -(-step.maximum * step.element_size // (bits // 8))
+            found.append(Buffer(step.stream, _instances(plan, step.channel) * beats, bits))
+        elif isinstance(step, Loop) and step.count_port:
+            name = plan.channels[step.element_channel].name
+            bits = sum(_element_bits(ports, name)) or 1
+            found.append(Buffer(name, _instances(plan, step.element_channel), bits))
+    return tuple(found)
+
+
+def _instances(plan: Plan, channel: int) -> int:
+    """How many times the steps of a channel can run per message: its loops' maxima."""
+    counts = []
+    while channel:
+        loop = next(s for s in plan.steps if isinstance(s, Loop) and s.element_channel == channel)
+        counts.append(loop.maximum)
+        channel = loop.channel
+    return prod(counts)
+
+
+def _element_ports(ports: tuple[Port, ...], channel: str) -> list[Port]:
+    return [p for p in ports if p.group == channel and p.role in _DATA]
+
+
+def _element_bits(ports: tuple[Port, ...], channel: str) -> list[int]:
+    return [p.bits for p in _element_ports(ports, channel)]
+
+
+@block
+def split(word: Any, low: int, target: Any) -> Any:
+    """Drive `target` with the bits of `word` from `low` up."""
+    high = low + len(target)
+
+    @always_comb
+    def extract() -> None:
+        target.next = word[high:low]
+
+    return extract
+
+
+@block
+def split_bit(word: Any, low: int, target: Any) -> Any:
+    """Drive the single-bit `target` with bit `low` of `word`."""
+
+    @always_comb
+    def extract() -> None:
+        target.next = word[low]
+
+    return extract
+
+
+@block
+def stream_buffers(
+    plan: Plan, clk: Any, rst: Any, producer: dict[str, Any], publisher: dict[str, Any]
+) -> Any:
+    """FIFOs from `producer`'s sub-streams and element channels to `publisher`'s.
+
+    Both map the publisher's accelerator-side port names to signals.
+    """
+    ports = ports_of(plan, Side.PUBLISHER)
+    blocks = []
+    for buffer in buffers_of(plan):
+        name = buffer.channel
+        if f"{name}_tdata" in publisher:
+            blocks.append(
+                fifo(clk, rst, producer[f"{name}_tdata"], producer[f"{name}_tvalid"],
+                     producer[f"{name}_tready"], publisher[f"{name}_tdata"],
+                     publisher[f"{name}_tvalid"], publisher[f"{name}_tready"], buffer.words)
+            )  # fmt: skip
+            continue
+        data = [p.name for p in _element_ports(ports, name)]
+        # One word per element (a lone bool padded: ConcatSignal needs two parts).
+        parts = [producer[p] for p in reversed(data)] or [intbv(0)[1:]]
+        word_in = ConcatSignal(intbv(0)[1:], *parts) if len(parts) == 1 else ConcatSignal(*parts)
+        word_out = Signal(intbv(0)[len(word_in) :])
+        blocks.append(
+            fifo(clk, rst, word_in, producer[f"{name}_valid"], producer[f"{name}_ready"],
+                 word_out, publisher[f"{name}_valid"], publisher[f"{name}_ready"], buffer.words)
+        )  # fmt: skip
+        low = 0
+        for port in data:
+            target = publisher[port]
+            if isinstance(target.val, bool):
+                blocks.append(split_bit(word_out, low, target))
+            else:
+                blocks.append(split(word_out, low, target))
+            low += len(target)
+    return blocks
+
+
+def buffered_ports(plan: Plan) -> tuple[Port, ...]:
+    """The buffered publisher's ports: the publisher's own, DMA side first."""
+    return (*dma_ports(plan, Side.PUBLISHER), *ports_of(plan, Side.PUBLISHER))
+
+
+@block
+def buffered_publisher(plan: Plan, **ports: Any) -> Any:
+    """The publisher of `plan` behind `stream_buffers`; `ports`: `buffered_ports`."""
+    clk, rst = ports["clk"], ports["rst"]
+    buffered = {b.channel for b in buffers_of(plan)}
+    inner = dict(ports)
+    inner.update(port_signals([p for p in ports_of(plan, Side.PUBLISHER) if p.group in buffered]))
+    return stream_buffers(plan, clk, rst, ports, inner), rfc_publisher(plan, **inner)

@@ -5,6 +5,8 @@ accelerator, or is counted as dropped where it was dropped and why. Reasons:
 
 - ``overflow``: a full callback queue gave it up (the oldest waiting, under KEEP_LAST).
 - ``malformed``: bytes that are not a valid message of their type.
+- ``maximum``: a string or sequence longer than the project's ``maxima``, which the logic's
+  subscriber converter was built for (it would drop the message).
 - ``protocol:<reason>``: PL→PS chunks breaking the wire protocol (docs/protocol.md), counted
   per message lost; ``protocol:id`` is a chunk of a publisher id the system does not have,
   ``protocol:unfinished`` a message still incomplete when the run ended.

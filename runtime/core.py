@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from enum import StrEnum
 
 from rfc.errors import RfcError
-from rfc.messages.codec import FrameError
+from rfc.messages.codec import FrameError, decode
 from rfc.runtime.account import Account
 from rfc.runtime.plan import Route, RuntimePlan, ToLogic, ToSoftware, ToTopic
 from rfc.runtime.protocol import Chunk, ProtocolError, Reassembler, message_chunk
@@ -86,6 +86,7 @@ class Runtime:
         self.account = Account()
         self.software = plan.software_accelerators()
         self._reassembler = Reassembler()
+        self._logic_layouts = {c.id: c.layout for c in plan.logic_inputs}
         self._inputs = {}
         for topic_input in plan.inputs:
             self._inputs.setdefault(topic_input.topic, []).append(topic_input)
@@ -169,6 +170,10 @@ class Runtime:
     ) -> None:
         for route in routes:
             if isinstance(route, ToLogic):
+                refused = self._refused_by_logic(route.subscriber, data)
+                if refused is not None:
+                    self.account.drop(route.block, refused)
+                    continue
                 dropped = self.scheduler.push(route.subscriber, Queued(data, stamp, now))
                 if dropped is not None:
                     self.account.drop(self.plan.subscriber_names[dropped.subscriber], "overflow")
@@ -176,6 +181,19 @@ class Runtime:
                 self._publish(route, data, stamp, out)
             else:
                 self._run_software(route, data, stamp, now, out)
+
+    def _refused_by_logic(self, subscriber: int, data: bytes) -> str | None:
+        """Why the subscriber converter would drop this message, if it would.
+
+        It drops what is not a message of its type and what holds a string or sequence longer
+        than the maxima it was built for; both are counted here rather than lost in the logic.
+        """
+        try:
+            values = decode(self._logic_layouts[subscriber], data)
+        except FrameError:
+            return "malformed"
+        maxima = self.plan.design.project.maxima
+        return None if maxima.beyond(self._logic_layouts[subscriber], values) is None else "maximum"
 
     def _publish(self, route: ToTopic, data: bytes, stamp: int, out: list[Published]) -> None:
         try:

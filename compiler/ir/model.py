@@ -19,6 +19,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from rfc.errors import SourceLocation
+from rfc.messages.limits import Limits
 
 if TYPE_CHECKING:
     from rfc.ir.infrastructure import Infrastructure
@@ -257,6 +258,8 @@ class ProjectSettings(_Spotted):
         scheduler: The PL→PS scheduling algorithm, or ``auto``.
         msg_paths: Absolute directories of the user's own ``.msg`` definitions.
         spec_file: The specification the design was read from.
+        maxima: The largest strings and sequences the logic accepts (sizes its counters and
+            buffers).
         location: Where the project was declared.
         spots: Locations of individual attributes.
     """
@@ -272,6 +275,7 @@ class ProjectSettings(_Spotted):
     msg_paths: tuple[Path, ...]
     spec_file: Path
     location: SourceLocation
+    maxima: Limits = field(default_factory=Limits)
     spots: Mapping[str, SourceLocation] = field(default_factory=dict, compare=False, repr=False)
 
     @property

@@ -68,6 +68,12 @@ class _Writer:
                 "clock_mhz": project.clock_mhz,
                 "scheduler": project.scheduler,
                 "msg_paths": [self._path(p) for p in project.msg_paths],
+                "maxima": {
+                    "string": project.maxima.string,
+                    "sequence": project.maxima.sequence,
+                    "frame": project.maxima.frame,
+                    "fields": dict(project.maxima.fields),
+                },
                 **self._at(project.location),
             },
             "accelerators": [self.accelerator(t) for t in design.accelerators],

@@ -28,6 +28,7 @@ from rfc.ir.infrastructure import (
 from rfc.ir.model import Block, BlockKind, Design, Stage
 from rfc.messages.layout import FieldKind, Layout, LayoutField
 from rfc.passes.frame_size import default_frame_bytes, frame_bound
+from rfc.passes.maxima import check_maxima
 from rfc.passes.placement import CrossingConverter, place
 
 
@@ -57,6 +58,7 @@ class DeriveInfrastructure:
                 (placement.publishers, placement.crossing_publishers),
             )
         )
+        check_maxima(design, (*subscribers, *publishers))
         buffers = tuple(
             Buffer(converter.block, field.path, converter.max_frame_bytes)
             for converter in publishers

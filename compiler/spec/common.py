@@ -12,6 +12,7 @@ from pathlib import Path
 
 from rfc.errors import RfcError, SourceLocation, did_you_mean
 from rfc.ir.model import SCHEDULER_ALGORITHMS, AcceleratorKind, FunctionRef
+from rfc.messages.limits import MAX_LENGTH, Limits
 from rfc.messages.rosbags_adapter import DEFAULT_DISTRO, DISTROS, Middleware
 
 DEFAULT_FPGA_PART = "xc7z020clg400-1"
@@ -218,3 +219,39 @@ def function_ref(
             hint=f"write it as 'file.py:{name}'",
         )
     return FunctionRef(default_file, name)
+
+
+#: The keys of ``maxima`` besides ``fields``.
+MAXIMA_KEYS = ("string", "sequence", "frame")
+
+
+def maxima(
+    given: dict[str, tuple[object, SourceLocation]],
+    fields: dict[str, tuple[object, SourceLocation]],
+) -> Limits:
+    """Check the ``maxima`` of a spec: each a count a ROS length prefix can carry.
+
+    Args:
+        given: ``string``, ``sequence`` and ``frame`` as written, with their locations.
+        fields: Per-field maxima by path, with their locations.
+    """
+    for what, (value, location) in given.items():
+        _count(value, f"maxima '{what}'", 1 if what == "frame" else 0, location)
+    for path, (value, location) in fields.items():
+        _count(value, f"maximum of '{path}'", 0, location)
+    default = Limits()
+    chosen = {key: int(value) for key, (value, _) in given.items()}
+    return Limits(
+        string=chosen.get("string", default.string),
+        sequence=chosen.get("sequence", default.sequence),
+        frame=chosen.get("frame", default.frame),
+        fields={path: int(value) for path, (value, _) in fields.items()},
+    )
+
+
+def _count(value: object, what: str, lowest: int, location: SourceLocation) -> None:
+    if isinstance(value, bool) or not isinstance(value, int) or not lowest <= value < MAX_LENGTH:
+        raise RfcError(
+            f"{what} must be an integer from {lowest} to {MAX_LENGTH - 1}, not {value!r}",
+            location=location,
+        )

@@ -20,11 +20,11 @@ Every call records the user's call site, so the passes report errors at the line
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any
 
-from rfc.errors import RfcError, SourceLocation
+from rfc.errors import RfcError, SourceLocation, did_you_mean
 from rfc.ir.model import (
     AcceleratorType,
     Block,
@@ -34,6 +34,7 @@ from rfc.ir.model import (
     Endpoint,
     ProjectSettings,
 )
+from rfc.messages.limits import Limits
 from rfc.spec import common
 from rfc.spec.python_accelerators import AcceleratorDefinition
 from rfc.spec.python_calls import as_text, as_texts, call_site
@@ -128,6 +129,8 @@ class Project:
         clock_mhz: Clock of the logic in MHz.
         scheduler: LRU, NPFP, PFP, ROEDF, LOEDF, LST, or auto.
         msg_paths: Directories of your own ``.msg`` files, relative to this file.
+        maxima: The largest strings and sequences of the logic: ``string``, ``sequence``,
+            ``frame`` and ``fields`` (a mapping of dotted paths to counts), as in the YAML form.
     """
 
     def __init__(
@@ -141,8 +144,10 @@ class Project:
         clock_mhz: float = common.DEFAULT_CLOCK_MHZ,
         scheduler: str = common.DEFAULT_SCHEDULER,
         msg_paths: Iterable[str] = (),
+        maxima: Mapping[str, Any] | None = None,
     ) -> None:
         location, base = call_site()
+        limits, field_spots = _maxima(maxima or {}, location)
         chosen = common.middleware(as_text(middleware, "middleware", location), location)
         directories = [
             common.message_directory(text, base, location)
@@ -162,6 +167,8 @@ class Project:
             msg_paths=tuple(directories),
             spec_file=base / Path(location.file).name,
             location=location,
+            maxima=limits,
+            spots=field_spots,
         )
         self._accelerators: list[AcceleratorType] = []
         self._blocks: list[Block] = []
@@ -299,3 +306,27 @@ class Project:
         return Design(
             self._settings, tuple(self._accelerators), tuple(self._blocks), tuple(connections)
         )
+
+
+def _maxima(
+    given: Mapping[str, Any], location: SourceLocation
+) -> tuple[Limits, dict[str, SourceLocation]]:
+    """Check the ``maxima`` argument: the YAML form's keys, all pinned to the call."""
+    known = (*common.MAXIMA_KEYS, "fields")
+    for key in given:
+        if key not in known:
+            raise RfcError(
+                f"unknown key '{key}' in maxima; expected one of {', '.join(known)}",
+                location=location,
+                hint=did_you_mean(str(key), known),
+            )
+    fields = given.get("fields") or {}
+    if not isinstance(fields, Mapping):
+        raise RfcError(
+            f"maxima 'fields' must map field paths to integers, not {fields!r}", location=location
+        )
+    limits = common.maxima(
+        {key: (given[key], location) for key in common.MAXIMA_KEYS if key in given},
+        {str(path): (value, location) for path, value in fields.items()},
+    )
+    return limits, {f"maxima.fields.{path}": location for path in fields}

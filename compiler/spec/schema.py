@@ -26,6 +26,7 @@ class ValueKind(StrEnum):
     MAPPING = "a mapping"
     LIST = "a list"
     STRING_LIST = "a list of strings"
+    COUNTS = "a mapping of field paths to integers"
 
 
 @dataclass(frozen=True)
@@ -67,13 +68,14 @@ class Section:
         return tuple(k.name for k in self.keys)
 
 
-_S, _I, _N, _M, _L, _SL = (
+_S, _I, _N, _M, _L, _SL, _C = (
     ValueKind.STRING,
     ValueKind.INTEGER,
     ValueKind.NUMBER,
     ValueKind.MAPPING,
     ValueKind.LIST,
     ValueKind.STRING_LIST,
+    ValueKind.COUNTS,
 )
 SUBSCRIBER_TYPE = "ROS>accelerator"
 PUBLISHER_TYPE = "accelerator>ROS"
@@ -90,6 +92,22 @@ SCHEDULER = Section(
             "LRU, NPFP, PFP, ROEDF, LOEDF, LST, or auto (chosen by design-space exploration).",
             required=True,
             choices=SCHEDULER_ALGORITHMS,
+        ),
+    ),
+)
+MAXIMA = Section(
+    "maxima",
+    "The largest strings and sequences the logic accepts: they size its length counters and "
+    "the publishers' buffers; a subscriber drops a message beyond them as malformed.",
+    (
+        Key("string", (_I,), "Most bytes of an unbounded string (default 4096)."),
+        Key("sequence", (_I,), "Most elements of an unbounded sequence (default 1048576)."),
+        Key("frame", (_I,), "Most bytes of a frame a store-and-forward publisher holds (65536)."),
+        Key(
+            "fields",
+            (_C,),
+            "Per field, by dotted path (data, transforms.header.frame_id; name[] for each "
+            "string of a sequence of strings).",
         ),
     ),
 )
@@ -114,6 +132,7 @@ PROJECT = Section(
             (_S, _SL),
             "Directories of your own <package>/msg/*.msg, relative to the spec.",
         ),
+        Key("maxima", (_M,), "Largest strings and sequences of the logic.", section=MAXIMA),
     ),
 )
 PORT = Section(
@@ -249,6 +268,8 @@ def _kind_schema(kind: ValueKind, key: Key) -> dict[str, Any]:
         return {"type": "array", "items": _section_schema(key.section)}
     if kind is ValueKind.STRING_LIST:
         return {"type": "array", "items": {"type": "string"}}
+    if kind is ValueKind.COUNTS:
+        return {"type": "object", "additionalProperties": {"type": "integer", "minimum": 0}}
     schema: dict[str, Any] = {
         ValueKind.STRING: {"type": "string"},
         ValueKind.INTEGER: {"type": "integer"},

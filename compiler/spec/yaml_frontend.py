@@ -24,12 +24,14 @@ from rfc.ir.model import (
     Port,
     ProjectSettings,
 )
+from rfc.messages.limits import Limits
 from rfc.messages.rosbags_adapter import Middleware
 from rfc.spec import common
 from rfc.spec.schema import (
     ACCELERATOR,
     BLOCK,
     INTERFACE,
+    MAXIMA,
     OUTGOING,
     PORT,
     PROJECT,
@@ -93,6 +95,7 @@ class _YamlFrontend:
         else:
             chosen = common.DEFAULT_MIDDLEWARE
         part = reader.get("fpgaPart", common.DEFAULT_FPGA_PART)
+        maxima, field_spots = self._maxima(reader)
         return ProjectSettings(
             name=reader.get("name"),
             fpga_part=part,
@@ -110,8 +113,27 @@ class _YamlFrontend:
             ),
             spec_file=self.spec_file,
             location=reader.node.location,
-            spots={key: reader.location(key) for key in reader.values},
+            maxima=maxima,
+            spots={key: reader.location(key) for key in reader.values} | field_spots,
         )
+
+    def _maxima(self, project: MappingReader) -> tuple[Limits, dict[str, SourceLocation]]:
+        """The maxima, and where each per-field one is written (a pass checks the paths)."""
+        if not project.has("maxima"):
+            return Limits(), {}
+        reader = MappingReader(project.node_of("maxima"), MAXIMA, "maxima")
+        given = {
+            key: (reader.get(key), reader.location(key))
+            for key in common.MAXIMA_KEYS
+            if reader.has(key)
+        }
+        fields: dict[str, tuple[object, SourceLocation]] = {}
+        spots: dict[str, SourceLocation] = {}
+        if reader.has("fields"):
+            for key, value in reader.node_of("fields").pairs():
+                fields[str(key.value)] = (value.value, value.location)
+                spots[f"maxima.fields.{key.value}"] = key.location
+        return common.maxima(given, fields), spots
 
     def _scheduler(self, project: MappingReader) -> str:
         if not project.has("scheduler"):

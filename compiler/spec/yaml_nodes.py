@@ -74,6 +74,11 @@ class YamlNode:
         for node in self.node.value:
             yield self.child(node)
 
+    def pairs(self) -> Iterator[tuple[YamlNode, YamlNode]]:
+        """The keys and values of a mapping node."""
+        for key, value in self.node.value:
+            yield self.child(key), self.child(value)
+
 
 def load_yaml(path: Path, display: str) -> YamlNode:
     """Parse a spec file into its root node.
@@ -231,6 +236,15 @@ def expect_kind(node: YamlNode, kinds: tuple[ValueKind, ...], what: str) -> None
     """Raise unless the node is of one of the kinds (lists of strings checked item by item)."""
     kind = node.kind
     if kind in kinds or (kind is ValueKind.INTEGER and ValueKind.NUMBER in kinds):
+        return
+    if kind is ValueKind.MAPPING and ValueKind.COUNTS in kinds:
+        for key, value in node.pairs():
+            if value.kind is not ValueKind.INTEGER:
+                raise RfcError(
+                    f"{what} must map field paths to integers, but '{key.value}' maps to "
+                    f"{value.describe()}",
+                    location=value.location,
+                )
         return
     if kind is ValueKind.LIST and ValueKind.STRING_LIST in kinds:
         for item in node.elements():

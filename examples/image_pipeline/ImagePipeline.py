@@ -28,6 +28,8 @@ project = rfc.Project(
     bus_width=64,
     clock_mhz=100,
     scheduler="LRU",
+    # full-HD RGB frames (1920 x 1080 x 3 bytes of data), short names and encodings
+    maxima={"string": 64, "fields": {"data": 6220800}},
 )
 camera = project.subscriber(
     "Camera_sub", IMAGE, topic="/camera/image_raw", period="33 ms", max_bytes=6220900

@@ -20,13 +20,13 @@ from typing import Any
 from myhdl import ToVerilogWarning, ToVHDLWarning
 
 from rfc.errors import RfcError, did_you_mean
-from rfc.lib.converters.limits import Limits
 from rfc.lib.converters.loopback import LOOPBACK, loopback_ports, rfc_loopback
 from rfc.lib.converters.plan import plan
 from rfc.lib.converters.steps import Plan
 from rfc.lib.converters.toplevel import elaboration, port_signals, top_block
 from rfc.messages.codec import FrameError, decode
 from rfc.messages.layout import FieldKind, Layout, flatten
+from rfc.messages.limits import Limits
 from rfc.messages.rosbags_adapter import (
     BagMessage,
     MessageTypes,

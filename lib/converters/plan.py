@@ -5,7 +5,6 @@ from __future__ import annotations
 from dataclasses import dataclass, field, replace
 
 from rfc.errors import RfcError
-from rfc.lib.converters.limits import Limits
 from rfc.lib.converters.naming import port_name, safe_name
 from rfc.lib.converters.ports import Port, Side, check_names, ports_of
 from rfc.lib.converters.steps import (
@@ -22,6 +21,7 @@ from rfc.lib.converters.steps import (
     Step,
 )
 from rfc.messages.layout import LENGTH_PREFIX_SIZE, FieldKind, Layout, LayoutField
+from rfc.messages.limits import Limits
 
 #: Bus widths in bits a converter supports on its AXI-Stream side.
 BUS_WIDTHS = (8, 32, 64)
@@ -180,7 +180,7 @@ class _Builder:
         )
         self.place(string.align, Slot(0, LENGTH_PREFIX_SIZE, SlotRole.LENGTH, string), channel)
         self.close()
-        maximum = self.limits.maximum(string, path + "[]")
+        maximum = self.limits.string_in_sequence(leaf, path)
         self.payload(string, path, channel, maximum, f"{name}_item")
 
     def place(self, align: int, slot: Slot, channel: int) -> None:

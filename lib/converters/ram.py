@@ -30,7 +30,7 @@ def ram(
     A read of the address written in the same cycle returns the old word (read-first).
     """
     words: dict[int, int] = {}
-    width = len(w_data)  # for the Verilog template
+    width = len(w_data)  # noqa: F841 (the Verilog template reads it)
 
     @always(clk.posedge)
     def access() -> None:

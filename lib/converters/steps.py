@@ -18,8 +18,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from enum import StrEnum
 
-from rfc.lib.converters.limits import Limits
 from rfc.messages.layout import Layout, LayoutField
+from rfc.messages.limits import Limits
 
 #: Name of the root channel: the handshake of a whole message is ``msg_valid`` / ``msg_ready``.
 ROOT = "msg"

@@ -7,8 +7,6 @@ from pathlib import Path
 
 import pytest
 
-from rfc.driver import compile_spec
-from rfc.runtime.plan import RuntimePlan
 from rfc.runtime.timing import Traffic, measure, transfer_ns
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -24,7 +22,7 @@ def load_tool():
 @pytest.fixture(scope="module")
 def setting():
     tool = load_tool()
-    plan = RuntimePlan(compile_spec(tool.SPEC))
+    plan = tool.runtime_plan()
     data = tool.sample_messages(plan)
     per_subscriber, shared = tool.POLICIES.values()
     image = transfer_ns(len(data["/camera/image"]), 64, 100.0)

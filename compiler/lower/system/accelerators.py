@@ -20,7 +20,6 @@ from typing import Any
 from rfc.errors import RfcError
 from rfc.ir.model import AcceleratorKind, AcceleratorType, Block
 from rfc.ir.model import Port as ModelPort
-from rfc.lib.converters.limits import Limits
 from rfc.lib.converters.ports import Direction, Port, PortRole
 from rfc.lib.hls.adapter import AdapterShape
 from rfc.lower.hls_signature import HlsArgument, read_top_function
@@ -28,6 +27,7 @@ from rfc.lower.netlist import EntityDecl, Mode, PortDecl
 from rfc.lower.system.components import Component, adapter_component, convert
 from rfc.lower.system.interfaces import MESSAGE, Pin, accelerator_pins
 from rfc.lower.system.latency import accelerator_latency
+from rfc.messages.limits import Limits
 from rfc.spec.python_sources import function_in
 from rfc.toolchain import GhdlError, read_entities
 

@@ -18,7 +18,6 @@ from myhdl import ToVHDLWarning
 from rfc.ir.infrastructure import Converter
 from rfc.lib.converters.buffers import Buffer, buffered_ports, buffered_publisher, buffers_of
 from rfc.lib.converters.build import generate
-from rfc.lib.converters.limits import Limits
 from rfc.lib.converters.plan import plan
 from rfc.lib.converters.ports import Direction, Port, PortRole, Side
 from rfc.lib.converters.toplevel import elaboration, port_signals, top_block
@@ -27,6 +26,7 @@ from rfc.lib.hls.adapter import AdapterShape, hls_adapter
 from rfc.lib.manager.entity import ManagerShape, manager_ports, manager_top
 from rfc.lower.netlist import EntityDecl
 from rfc.lower.system.interfaces import declaration
+from rfc.messages.limits import Limits
 from rfc.toolchain import convert_myhdl
 
 

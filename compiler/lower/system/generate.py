@@ -18,7 +18,6 @@ from rfc.errors import RfcError
 from rfc.ir.infrastructure import Converter, Scheduler
 from rfc.ir.model import BlockKind, Connection, Design
 from rfc.lib.converters.buffers import Buffer
-from rfc.lib.converters.limits import Limits
 from rfc.lib.converters.plan import accelerator_ports
 from rfc.lib.converters.ports import Side
 from rfc.lib.manager.entity import ManagerShape
@@ -33,6 +32,7 @@ from rfc.lower.system.components import (
 )
 from rfc.lower.system.interfaces import MESSAGE
 from rfc.lower.system.top import CLOCK, RESET_N, Interface, Terminal, TopBuilder, wire_connection
+from rfc.messages.limits import Limits
 from rfc.passes.resolve_scheduler import ResolveScheduler
 
 #: The manager's cell label.
@@ -115,7 +115,7 @@ def generate_system(
         design = ResolveScheduler().apply(design)  # rfc sim compiles without the build passes
     infrastructure = design.infrastructure
     assert infrastructure is not None, "lower a design after derive-infrastructure"
-    limits = limits or Limits()
+    limits = limits or design.project.maxima
     width = design.project.bus_width
     directory.mkdir(parents=True, exist_ok=True)
     builder = TopBuilder(_top_entity(design), f"{top_name(design)}: the programmable logic of "

@@ -14,11 +14,11 @@ from dataclasses import dataclass
 
 from rfc.ir.model import Direction as PortDirection
 from rfc.ir.model import Port as ModelPort
-from rfc.lib.converters.limits import Limits
 from rfc.lib.converters.plan import accelerator_ports
 from rfc.lib.converters.ports import Direction, Port, PortRole, Side
 from rfc.lib.converters.toplevel import WIRES
 from rfc.lower.netlist import Mode, PortDecl
+from rfc.messages.limits import Limits
 
 #: The converter-side name of the message handshake.
 MESSAGE = "msg"

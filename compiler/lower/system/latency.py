@@ -16,11 +16,11 @@ from myhdl import StopSimulation, block, delay, instance
 
 from rfc.ir.infrastructure import Converter
 from rfc.lib.converters.build import publisher_top, subscriber_top
-from rfc.lib.converters.limits import Limits
 from rfc.lib.converters.plan import plan
 from rfc.lib.converters.ports import Direction, Port, PortRole, Side, dma_ports, ports_of
 from rfc.lib.converters.toplevel import elaboration, port_signals, top_block
 from rfc.messages.codec import default_values, encode
+from rfc.messages.limits import Limits
 
 #: Cycles after which a measurement gives up (the block never answered).
 _LIMIT = 20_000

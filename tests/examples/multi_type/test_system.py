@@ -3,7 +3,8 @@
 Each publisher takes its message's strings and sequences only after the record, while the
 subscriber in front hands them over as it parses: the publishers' buffers hold them. Images,
 scans and twists of random sizes go through the whole logic in GHDL; what comes out must be the
-very bytes rosbags serialized.
+very bytes rosbags serialized. Messages beyond the example's maxima are counted as dropped for
+that reason before they reach the logic.
 """
 
 from __future__ import annotations
@@ -74,16 +75,35 @@ def test_every_message_comes_out_of_the_logic_as_rosbags_serialized_it(tmp_path)
         kind = TOPICS[topic][0]
         data = types.serialize(types.build(kind, makers[topic](rng)), kind)
         messages.append((topic, 1_000_000 * (index + 1), data))
+    # beyond the maxima (images of 230,400 bytes, scans of 2,048 beams, 64-byte strings)
+    too_long = [
+        ("/camera/image", image(rng) | {"height": 1, "width": 76_801, "step": 230_403,
+                                        "encoding": "rgb8", "data": np.ones(230_403, np.uint8)}),
+        ("/scan", scan(rng) | {"ranges": np.zeros(2049, np.float32)}),
+        ("/cmd_vel", twist(rng) | {"header": {"stamp": {"sec": 1, "nanosec": 2},
+                                              "frame_id": "x" * 65}}),
+    ]  # fmt: skip
+    refused = [
+        (
+            topic,
+            1_000_000 * (40 + i),
+            types.serialize(types.build(TOPICS[topic][0], v), TOPICS[topic][0]),
+        )
+        for i, (topic, v) in enumerate(too_long)
+    ]
     bag = tmp_path / "in.mcap"
-    write_bag(bag, types, {t: k for t, (k, _) in TOPICS.items()}, messages)
+    write_bag(bag, types, {t: k for t, (k, _) in TOPICS.items()}, messages + refused)
 
     out = tmp_path / "out.mcap"
     result = run_rfc("sim", SPEC, "--bag", bag, "--out", out, "--json", cwd=ROOT)
     assert result.returncode == 0, result.stderr
     account = json.loads(result.stdout)
-    assert account["received"] == dict.fromkeys(TOPICS, 12)
+    assert account["received"] == dict.fromkeys(TOPICS, 13)
     assert account["published"] == {o: 12 for _, o in TOPICS.values()}
-    assert account["dropped"] == []
+    assert account["dropped"] == [
+        {"where": where, "reason": "maximum", "count": 1}
+        for where in ("Image_sub", "Scan_sub", "Twist_sub")
+    ]
     outputs = [(m.topic, m.timestamp_ns, m.data) for m in read_bag(out, types)]
     renamed = {t: o for t, (_, o) in TOPICS.items()}
     expected = [(renamed[t], stamp, data) for t, stamp, data in messages]

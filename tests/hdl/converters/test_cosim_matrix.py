@@ -13,10 +13,10 @@ import os
 
 import pytest
 
-from rfc.lib.converters.limits import Limits
 from rfc.lib.converters.plan import BUS_WIDTHS, plan
 from rfc.messages.codec import decode, encode
 from rfc.messages.layout import flatten
+from rfc.messages.limits import Limits
 from rfc.messages.rosbags_adapter import Middleware
 from rfc.toolchain import run_cocotb
 from tests.hdl.converters.matrix import CASES, drawn_values, recorded

@@ -13,10 +13,10 @@ from collections import Counter
 
 import pytest
 
-from rfc.lib.converters.limits import Limits
 from rfc.lib.converters.plan import plan
 from rfc.messages.codec import encode
 from rfc.messages.layout import flatten
+from rfc.messages.limits import Limits
 from rfc.messages.rosbags_adapter import Middleware, message_types
 from rfc.toolchain import run_cocotb
 from tests.hdl.converters.fuzz import candidates, verdict

@@ -10,11 +10,11 @@ from __future__ import annotations
 
 import pytest
 
-from rfc.lib.converters.limits import Limits
 from rfc.lib.converters.plan import plan
 from rfc.lib.converters.transactions import transactions
 from rfc.messages.codec import encode
 from rfc.messages.layout import flatten
+from rfc.messages.limits import Limits
 from rfc.messages.rosbags_adapter import Middleware, message_types
 from tests.hdl.converters.matrix import drawn_values
 from tests.lib.converters.myhdl_bench import simulate_publisher, simulate_subscriber, visible

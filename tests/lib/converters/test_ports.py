@@ -10,10 +10,10 @@ import pytest
 
 from rfc.errors import RfcError
 from rfc.lib.converters.build import generate
-from rfc.lib.converters.limits import Limits
 from rfc.lib.converters.plan import accelerator_ports, plan
 from rfc.lib.converters.ports import Direction, PortRole, Side, dma_ports
 from rfc.messages.layout import flatten
+from rfc.messages.limits import Limits
 from rfc.messages.rosbags_adapter import Middleware, message_types
 from rfc.messages.selection import select
 from rfc.toolchain import read_entities

@@ -11,9 +11,10 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
+from typing import Any
 
 from rfc.errors import RfcError
-from rfc.messages.layout import FieldKind, LayoutField
+from rfc.messages.layout import FieldKind, Layout, LayoutField
 
 #: Largest length a ROS length prefix (uint32) can carry.
 MAX_LENGTH = 2**32 - 1
@@ -60,6 +61,41 @@ class Limits:
         if path in self.fields:
             return self.fields[path]
         return self.string if field.kind is FieldKind.STRING else self.sequence
+
+    def string_in_sequence(self, field: LayoutField, path: str) -> int:
+        """Return the most bytes of each string of a sequence of strings (keyed ``path[]``)."""
+        if field.string_bound:
+            return field.string_bound
+        return self.fields.get(path + "[]", self.string)
+
+    def beyond(self, layout: Layout, values: Mapping[str, Any], prefix: str = "") -> str | None:
+        """The path of the first string or sequence longer than its maximum, if any.
+
+        Args:
+            layout: The message (or sequence element) the values are of.
+            values: Its decoded values (`rfc.messages.codec.decode`).
+            prefix: The path of the enclosing sequence and a dot, inside its elements.
+        """
+        for leaf in layout.fields:
+            if leaf.kind is FieldKind.PRIMITIVE:
+                continue
+            path, value = prefix + leaf.path, values[leaf.path]
+            if _size(value) > self.maximum(leaf, path):
+                return path
+            if leaf.element is not None:
+                for element in value:
+                    if (found := self.beyond(leaf.element, element, path + ".")) is not None:
+                        return found
+            elif leaf.kind is not FieldKind.STRING and leaf.element_type == "string":
+                longest = max((_size(text) for text in value), default=0)
+                if longest > self.string_in_sequence(leaf, path):
+                    return path + "[]"
+        return None
+
+
+def _size(value: Any) -> int:
+    """Bytes of a string (UTF-8, as on the wire), elements of a sequence."""
+    return len(value.encode()) if isinstance(value, str) else len(value)
 
 
 def _check(name: str, value: int) -> None:

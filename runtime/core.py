@@ -151,6 +151,10 @@ class Runtime:
         self._deliver(routes, message, stamp, now, published)
         return published
 
+    def unfinished_publishers(self) -> list[str]:
+        """The publishers whose PL→PS message has started and not finished."""
+        return [self.plan.publisher_names.get(i, f"id {i}") for i in self._reassembler.pending()]
+
     def in_flight(self) -> bool:
         """Whether a PL→PS message has started and not finished."""
         return bool(self._reassembler.pending())

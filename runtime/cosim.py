@@ -10,9 +10,11 @@ stamp of the newest input offered so far.
 
 Idle time is skipped (`rfc.runtime.arrivals`): when nothing waits, nothing moves and the logic
 has been quiet for the job's drain window, the next message arrives at once. After the last
-message the run ends once the system is idle the same way. Results go back through files: the
-published messages (`rfc.runtime.records`), the account as JSON, and the progress (messages
-offered so far).
+message the run ends once the system is idle the same way. A logic that stops completing
+transfers while work is pending ends the run with the stall watchdog's report
+(`rfc.runtime.stall`). Results go back through files: the published messages
+(`rfc.runtime.records`), the account as JSON, the progress (messages offered so far), or the
+stall report instead.
 """
 
 from __future__ import annotations
@@ -34,7 +36,9 @@ from rfc.messages.rosbags_adapter import message_types, read_bag
 from rfc.runtime.arrivals import IDLE_FRACTION, ArrivalClock
 from rfc.runtime.core import Published, QueueConfig, QueuePolicy, Runtime
 from rfc.runtime.plan import RuntimePlan
+from rfc.runtime.protocol import Chunk
 from rfc.runtime.records import write_records
+from rfc.runtime.stall import StallError, StallWatch, pending_work
 
 
 class _Replay:
@@ -46,8 +50,9 @@ class _Replay:
         self.stamp = 0
         self.published: list[Published] = []
         self.work = Event()
-        self.sending = False
+        self.sending: Chunk | None = None
         self.received_transfers = 0
+        self.watch = StallWatch(job["stall_cycles"], len(dut.s_axis_mm2s_tkeep))
         self.source = AxiStreamSource(
             AxiStreamBus.from_prefix(dut, "s_axis_mm2s"),
             dut.aclk,
@@ -73,27 +78,30 @@ class _Replay:
         while True:
             chosen = self.runtime.next_transfer()
             if chosen is None:
-                self.sending = False
+                self.sending = None
                 self.work.clear()
                 await self.work.wait()
                 continue
-            self.sending = True
             chunk, _ = chosen
-            await self.source.send(chunk.to_bytes())
+            self.sending = chunk
+            transfer = chunk.to_bytes()
+            await self.source.send(transfer)
             await self.source.wait()
+            self.watch.completed(self.cycles(), len(transfer))
 
     async def receive(self) -> None:
         """The PL→PS DMA: every transfer to the runtime."""
         while True:
             frame = await self.sink.recv()
             self.received_transfers += 1
+            self.watch.completed(self.cycles(), len(frame.tdata))
             self.published += self.runtime.receive(bytes(frame.tdata), self.stamp, self.cycles())
             if self.runtime.waiting():
                 self.work.set()
 
     def busy(self) -> bool:
         return (
-            self.sending
+            self.sending is not None
             or self.runtime.waiting() > 0
             or not self.source.idle()
             or self.sink.active
@@ -102,14 +110,24 @@ class _Replay:
         )
 
     async def run_until(self, due: int) -> None:
-        """Run the clock to cycle `due`, or less when the system falls idle before it."""
+        """Run the clock to cycle `due`, or less when the system falls idle before it.
+
+        Raises:
+            StallError: Work is pending and no transfer completes (the logic stalls).
+        """
         drain = self.job["drain_cycles"]
         while self.cycles() < due:
             before = self.received_transfers
             step = min(drain, due - self.cycles())
             await Timer(step * self.period_ns, unit="ns")
-            if not self.busy() and self.received_transfers == before:
+            busy = self.busy()
+            if not busy and self.received_transfers == before:
                 return
+            self.watch.check(self.cycles(), busy, self.pending)
+
+    def pending(self) -> str:
+        receiving = self.sink.active or not self.sink.empty()
+        return pending_work(self.runtime, self.sending, receiving)
 
     async def replay(self) -> None:
         types = message_types(
@@ -154,6 +172,10 @@ async def replay_through_logic(dut: object) -> None:
     await ClockCycles(dut.aclk, 2)
     cocotb.start_soon(replay.send())
     cocotb.start_soon(replay.receive())
-    await replay.replay()
+    try:
+        await replay.replay()
+    except StallError as exc:
+        Path(job["stalled"]).write_text(json.dumps({"message": exc.message, "hint": exc.hint}))
+        return
     write_records(Path(job["results"]), replay.published)
     Path(job["account"]).write_text(json.dumps(replay.runtime.account.to_json()))

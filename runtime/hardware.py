@@ -23,6 +23,7 @@ from rfc.ir.model import Design
 from rfc.runtime.account import Account
 from rfc.runtime.core import Published, QueueConfig
 from rfc.runtime.records import read_records
+from rfc.runtime.stall import DEFAULT_STALL_CYCLES, StallError
 from rfc.toolchain import CosimError, run_cocotb
 
 #: The top provider of the whole-system hardware generation.
@@ -83,6 +84,7 @@ def simulate_with_ghdl(
     *,
     queues: QueueConfig,
     drain_cycles: int = DEFAULT_DRAIN_CYCLES,
+    stall_cycles: int = DEFAULT_STALL_CYCLES,
     seed: int = 1,
     progress: Callable[[int], None] | None = None,
 ) -> SimulationRun:
@@ -96,11 +98,14 @@ def simulate_with_ghdl(
         workdir: Scratch folder (VHDL, simulation build, results).
         queues: The processor's callback queues.
         drain_cycles: Cycles of silence after which the system is idle.
+        stall_cycles: Cycles without a completed transfer, while work is pending, after which
+            the logic counts as stalled (`rfc.runtime.stall`).
         seed: Seed of the random idle and backpressure.
         progress: Called now and then with the number of messages offered so far.
 
     Raises:
         CosimError: The simulation failed (a bug in rfc or in the logic).
+        StallError: The logic stalled.
     """
     job = {
         "spec": str(design.project.spec_file),
@@ -111,10 +116,12 @@ def simulate_with_ghdl(
         "policy": queues.policy.value,
         "depth": queues.depth,
         "drain_cycles": drain_cycles,
+        "stall_cycles": stall_cycles,
         "seed": seed,
         "results": str(workdir / "published.rec"),
         "account": str(workdir / "account.json"),
         "progress": str(workdir / "progress"),
+        "stalled": str(workdir / "stalled.json"),
     }
     job_file = workdir / "job.json"
     job_file.write_text(json.dumps(job, indent=1))
@@ -141,6 +148,9 @@ def simulate_with_ghdl(
             progress(int(text))
     if failure:
         raise failure[0]
+    if stalled := _read(Path(job["stalled"])):
+        report = json.loads(stalled)
+        raise StallError(report["message"], hint=report["hint"])
     if not Path(job["account"]).is_file():
         raise CosimError(f"the simulation wrote no account (see {workdir / 'sim'})")
     return SimulationRun(

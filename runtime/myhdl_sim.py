@@ -20,6 +20,8 @@ from myhdl import ResetSignal, Signal, StopSimulation, block, delay, instance, i
 from rfc.messages.rosbags_adapter import BagMessage
 from rfc.runtime.arrivals import IDLE_FRACTION, ArrivalClock
 from rfc.runtime.core import Published, Runtime
+from rfc.runtime.protocol import Chunk
+from rfc.runtime.stall import DEFAULT_STALL_CYCLES, StallWatch, pending_work
 
 MyhdlFactory = Callable[..., Any]
 
@@ -42,10 +44,15 @@ def simulate_with_myhdl(
     *,
     clock_mhz: float,
     drain_cycles: int,
+    stall_cycles: int = DEFAULT_STALL_CYCLES,
     seed: int = 1,
     progress: Callable[[int], None] | None = None,
 ) -> list[Published]:
-    """Replay `messages` (spec topics, time order) through the MyHDL logic; finish the account."""
+    """Replay `messages` (spec topics, time order) through the MyHDL logic; finish the account.
+
+    Raises:
+        StallError: The logic stalled (`rfc.runtime.stall`).
+    """
     lanes = bus_width // 8
     ports: dict[str, Any] = {
         "aclk": Signal(bool(0)),
@@ -63,6 +70,7 @@ def simulate_with_myhdl(
     }
     published: list[Published] = []
     processor = _Processor(ports, lanes, runtime, iter(messages), clock_mhz, drain_cycles, seed)
+    processor.watch = StallWatch(stall_cycles, lanes)
     processor.progress = progress
     processor.published = published
 
@@ -111,6 +119,8 @@ class _Processor:
         self.progress: Callable[[int], None] | None = None
         self.published: list[Published] = []
         self.beats: list[tuple[int, int, bool]] = []
+        self.sending: Chunk | None = None
+        self.watch = StallWatch(DEFAULT_STALL_CYCLES, lanes)
         self.received = bytearray()
         self.stamp = 0
         self.cycle = 0
@@ -135,6 +145,7 @@ class _Processor:
                 or p["m_axis_s2mm_tvalid"]
             )
             self.quiet = 0 if busy or moved else self.quiet + 1
+            self.watch.check(self.cycle, busy, self._pending)
             if upcoming is None and self.quiet >= self.drain:
                 raise StopSimulation
             while upcoming is not None:  # every message due by now, together
@@ -161,6 +172,9 @@ class _Processor:
         if p["s_axis_mm2s_tvalid"] and p["s_axis_mm2s_tready"]:
             self.beats.pop(0)
             moved = True
+            if not self.beats and self.sending is not None:
+                self.watch.completed(self.cycle, len(self.sending.to_bytes()))
+                self.sending = None
         if p["m_axis_s2mm_tvalid"] and p["m_axis_s2mm_tready"]:
             keep = int(p["m_axis_s2mm_tkeep"])
             data = int(p["m_axis_s2mm_tdata"]).to_bytes(self.lanes, "little")
@@ -168,12 +182,18 @@ class _Processor:
             moved = True
             if p["m_axis_s2mm_tlast"]:
                 transfer, self.received = bytes(self.received), bytearray()
+                self.watch.completed(self.cycle, len(transfer))
                 self.published += self.runtime.receive(transfer, self.stamp, self.cycle)
         return moved
+
+    def _pending(self) -> str:
+        receiving = bool(self.received) or bool(self.ports["m_axis_s2mm_tvalid"])
+        return pending_work(self.runtime, self.sending, receiving)
 
     def _drive(self) -> None:
         p = self.ports
         if not self.beats and (chosen := self.runtime.next_transfer()) is not None:
+            self.sending = chosen[0]
             self.beats = _beats(chosen[0].to_bytes(), self.lanes)
         presenting = bool(p["s_axis_mm2s_tvalid"]) and not p["s_axis_mm2s_tready"]
         if self.beats and (presenting or self.chance.random() >= IDLE_FRACTION):

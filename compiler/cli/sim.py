@@ -26,6 +26,7 @@ from rich.table import Table
 
 from rfc.errors import RfcError, did_you_mean
 from rfc.runtime.core import DEFAULT_DEPTH, QueuePolicy
+from rfc.runtime.stall import DEFAULT_STALL_CYCLES
 
 if TYPE_CHECKING:
     from rfc.messages.rosbags_adapter import BagMessage, MessageTypes
@@ -71,6 +72,15 @@ def sim(
         int,
         typer.Option("--drain-cycles", min=1, help="Quiet cycles after which the logic is idle."),
     ] = 1000,
+    stall_cycles: Annotated[
+        int,
+        typer.Option(
+            "--stall-cycles",
+            min=1,
+            help="Cycles without a completed DMA transfer, while work is pending, after which "
+            "the logic counts as stalled (plus 4x the longest transfer).",
+        ),
+    ] = DEFAULT_STALL_CYCLES,
     seed: Annotated[int, typer.Option("--seed", help="Seed of random idle/backpressure.")] = 1,
     as_json: Annotated[
         bool, typer.Option("--json", help="Print the account as one JSON document.")
@@ -97,7 +107,9 @@ def sim(
     topic_names = _match_topics(plan, bag, types)
     queues = QueueConfig(queue, depth)
     runtime = Runtime(plan, queues)  # finds every ROS-SW function before anything runs
-    run = _Run(bag, types, topic_names, runtime, backend, drain_cycles, seed, top_provider)
+    run = _Run(
+        bag, types, topic_names, runtime, backend, drain_cycles, stall_cycles, seed, top_provider
+    )
     console = Console(stderr=True, highlight=False)
     with Progress(
         TextColumn("replaying"),
@@ -132,6 +144,7 @@ class _Run:
     runtime: Runtime
     backend: Backend
     drain_cycles: int
+    stall_cycles: int
     seed: int
     top_provider: str | None
 
@@ -186,6 +199,7 @@ class _Run:
             scratch,
             queues=self.runtime.queues,
             drain_cycles=self.drain_cycles,
+            stall_cycles=self.stall_cycles,
             seed=self.seed,
             progress=progress,
         )
@@ -208,6 +222,7 @@ class _Run:
                 messages,
                 clock_mhz=self.runtime.plan.design.project.clock_mhz,
                 drain_cycles=self.drain_cycles,
+                stall_cycles=self.stall_cycles,
                 seed=self.seed,
                 progress=progress,
             )

@@ -1,0 +1,95 @@
+"""The stall watchdog of simulated replays: a logic that stops moving is an error, not a hang.
+
+While work is pending — a PS→PL transfer under way, messages waiting for the logic, a PL→PS
+transfer or message begun — some DMA transfer must complete now and then. When none has for
+`stall_cycles` plus four times the longest transfer seen so far (in beats, so large frames get
+their time), the replay stops with an error that says what was pending. Both simulation backends
+use it.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+from rfc.errors import RfcError
+from rfc.runtime.core import Runtime
+from rfc.runtime.protocol import Chunk
+
+#: Default cycles without a completed transfer, while work is pending, that count as a stall.
+DEFAULT_STALL_CYCLES = 100_000
+
+
+class StallError(RfcError):
+    """The simulated logic stopped completing transfers while work was pending."""
+
+
+@dataclass
+class StallWatch:
+    """Watch one replay's DMA transfers for a stall.
+
+    Attributes:
+        stall_cycles: Cycles without a completed transfer that count as a stall (plus four
+            times the longest transfer seen).
+        lanes: Bytes per beat of the DMA streams.
+    """
+
+    stall_cycles: int
+    lanes: int
+    _last: int = field(default=0, init=False)
+    _longest: int = field(default=0, init=False)
+
+    def completed(self, cycle: int, transfer_bytes: int) -> None:
+        """A transfer of `transfer_bytes` (chunk header included) completed at `cycle`."""
+        self._last = cycle
+        self._longest = max(self._longest, math.ceil(transfer_bytes / self.lanes))
+
+    def window(self) -> int:
+        """Cycles without a completed transfer that count as a stall now."""
+        return self.stall_cycles + 4 * self._longest
+
+    def check(self, cycle: int, busy: bool, pending: Callable[[], str]) -> None:
+        """Raise `StallError` when work is pending and nothing completed for the window.
+
+        Args:
+            cycle: The current cycle.
+            busy: Whether work is pending (when not, the watch rests).
+            pending: Says what is pending, for the error.
+        """
+        if not busy:
+            self._last = cycle
+            return
+        if cycle - self._last > self.window():
+            raise StallError(
+                f"the logic stalled: no DMA transfer completed for {cycle - self._last:,} cycles "
+                f"(cycle {cycle:,}) while {pending()}",
+                hint="if the logic legitimately needs longer between transfers, raise "
+                "--stall-cycles; otherwise an accelerator or converter waits for something "
+                "that never comes (a handshake it does not answer)",
+            )
+
+
+def pending_work(runtime: Runtime, sending: Chunk | None, receiving: bool) -> str:
+    """What a replay waits for, in words: the transfers under way and the messages waiting.
+
+    Args:
+        runtime: The processor side.
+        sending: The PS→PL chunk under way, if one is.
+        receiving: Whether a PL→PS transfer has begun and not ended.
+    """
+    parts = []
+    if sending is not None:
+        name = runtime.plan.subscriber_names.get(sending.id, f"id {sending.id}")
+        parts.append(
+            f"the logic had not taken all of a {len(sending.to_bytes())}-byte PS→PL transfer "
+            f"to subscriber '{name}'"
+        )
+    if receiving:
+        parts.append("a PL→PS transfer had begun and not ended (no tlast)")
+    if unfinished := runtime.unfinished_publishers():
+        names = ", ".join(f"'{name}'" for name in unfinished)
+        parts.append(f"publisher {names} had begun a message and not finished it")
+    if waiting := runtime.waiting():
+        parts.append(f"{waiting} message{'s' if waiting > 1 else ''} waited for the logic")
+    return "; ".join(parts) or "work was pending"

@@ -1,0 +1,63 @@
+"""The stall watchdog: a logic that stops moving ends `rfc sim` with an error, never a hang.
+
+Two fixture logics stall in the two ways a logic can (tests/runtime/stuck_top.py): one never
+takes a PS→PL beat, one starts a PL→PS transfer and never ends it. On both backends `rfc sim`
+exits 1 naming what was pending, writes no bag, and prints no traceback.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from rfc.messages.rosbags_adapter import message_types, write_bag
+from rfc.runtime.stall import StallError, StallWatch
+from tests.runtime.support import pose_messages, system_copy
+from tests.support.cli import run_rfc
+
+POSE = "geometry_msgs/msg/PoseWithCovarianceStamped"
+STUCK = {
+    "deaf": ("PS→PL transfer to subscriber 'Pose_sub'", "tests.runtime.stuck_top:deaf_top"),
+    "babbling": (
+        "a PL→PS transfer had begun and not ended (no tlast)",
+        "tests.runtime.stuck_top:babbling_top",
+    ),
+}
+
+
+@pytest.fixture
+def bag(tmp_path):
+    types = message_types("ros2")
+    path = tmp_path / "in.mcap"
+    messages = [(m.topic, m.timestamp_ns, m.data) for m in pose_messages(types, 3)]
+    write_bag(path, types, {"/amcl_pose": POSE}, messages)
+    return path
+
+
+@pytest.mark.parametrize("backend", ["ghdl", "myhdl"])
+@pytest.mark.parametrize("logic", STUCK)
+def test_a_stalling_logic_ends_the_replay_with_what_was_pending(tmp_path, bag, backend, logic):
+    spec = system_copy(tmp_path, "pose_mixed.yaml")
+    pending, provider = STUCK[logic]
+    out = tmp_path / "out.mcap"
+    result = run_rfc(
+        "sim", spec, "--bag", bag, "--out", out, "--backend", backend,
+        "--top-provider", provider, "--stall-cycles", "3000",
+    )  # fmt: skip
+    assert result.returncode == 1
+    assert "Traceback" not in result.stderr
+    assert "error: the logic stalled: no DMA transfer completed for" in result.stderr
+    assert "raise --stall-cycles" in result.stderr
+    assert pending in result.stderr
+    assert not out.exists()
+
+
+def test_the_window_grows_with_the_longest_transfer_and_rests_while_idle():
+    watch = StallWatch(stall_cycles=100, lanes=8)
+    watch.check(50, busy=True, pending=lambda: "x")
+    watch.completed(60, transfer_bytes=800)  # 100 beats
+    assert watch.window() == 100 + 4 * 100
+    watch.check(560, busy=True, pending=lambda: "x")  # exactly the window: not yet
+    with pytest.raises(StallError, match=r"no DMA transfer completed for 501 cycles .* while x"):
+        watch.check(561, busy=True, pending=lambda: "x")
+    watch.check(5000, busy=False, pending=lambda: "x")  # idle: the watch rests
+    watch.check(5500, busy=True, pending=lambda: "x")

@@ -27,7 +27,9 @@ def ram(
 ) -> Any:
     """`depth` words of `len(w_data)` bits; `r_data` shows word `r_address` after `r_enable`.
 
-    A read of the address written in the same cycle returns the old word (read-first).
+    A read of the address written in the same cycle returns the old word (read-first). The
+    memory has no initial contents (a FIFO reads only words it wrote), so synthesis gets a
+    plain block RAM with nothing to initialize.
     """
     words: dict[int, int] = {}
     width = len(w_data)  # noqa: F841 (the Verilog template reads it)
@@ -48,7 +50,7 @@ def ram(
 ram.vhdl_code = """
 ${r_data}_memory: process ($clk) is
     type words_t is array (0 to $depth - 1) of unsigned($r_data'range);
-    variable words: words_t := (others => (others => '0'));
+    variable words: words_t;  -- no initial contents: a word is read only once written
 begin
     if rising_edge($clk) then
         if $r_enable = '1' then

@@ -74,8 +74,8 @@ def buffers_section(system: SystemHardware) -> ReportSection:
     lines = [
         "A publisher takes a message's strings and sequences only after its other fields (it "
         "needs every length for the frame length), so each gets a FIFO that holds one message "
-        f"at the configured maxima. Together: {total} block RAMs of 36 Kb (an xc7z020 has 140); "
-        "lower the maxima to shrink them.",
+        f"at the project's maxima. Together at most {total} block RAMs of 36 Kb (synthesis may "
+        "put the small ones in LUT RAM; an xc7z020 has 140); lower the maxima to shrink them.",
         "",
         *markdown_table(
             ["publisher", "holds", "words", "bits", "KiB", "BRAM36"],

@@ -38,7 +38,7 @@ from rfc.runtime.core import Published, QueueConfig, QueuePolicy, Runtime
 from rfc.runtime.plan import RuntimePlan
 from rfc.runtime.protocol import Chunk
 from rfc.runtime.records import write_records
-from rfc.runtime.stall import StallError, StallWatch, pending_work
+from rfc.runtime.stall import StallError, StallWatch, largest_output, pending_work
 
 
 class _Replay:
@@ -52,7 +52,9 @@ class _Replay:
         self.work = Event()
         self.sending: Chunk | None = None
         self.received_transfers = 0
-        self.watch = StallWatch(job["stall_cycles"], len(dut.s_axis_mm2s_tkeep))
+        self.watch = StallWatch(
+            job["stall_cycles"], len(dut.s_axis_mm2s_tkeep), largest_output(runtime)
+        )
         self.source = AxiStreamSource(
             AxiStreamBus.from_prefix(dut, "s_axis_mm2s"),
             dut.aclk,
@@ -123,11 +125,14 @@ class _Replay:
             busy = self.busy()
             if not busy and self.received_transfers == before:
                 return
-            self.watch.check(self.cycles(), busy, self.pending)
+            sending = len(self.sending.to_bytes()) if self.sending is not None else 0
+            self.watch.check(self.cycles(), busy, self.pending, sending, self.receiving())
+
+    def receiving(self) -> bool:
+        return bool(self.sink.active) or not self.sink.empty()
 
     def pending(self) -> str:
-        receiving = self.sink.active or not self.sink.empty()
-        return pending_work(self.runtime, self.sending, receiving)
+        return pending_work(self.runtime, self.sending, self.receiving())
 
     async def replay(self) -> None:
         types = message_types(

@@ -21,7 +21,7 @@ from rfc.messages.rosbags_adapter import BagMessage
 from rfc.runtime.arrivals import IDLE_FRACTION, ArrivalClock
 from rfc.runtime.core import Published, Runtime
 from rfc.runtime.protocol import Chunk
-from rfc.runtime.stall import DEFAULT_STALL_CYCLES, StallWatch, pending_work
+from rfc.runtime.stall import DEFAULT_STALL_CYCLES, StallWatch, largest_output, pending_work
 
 MyhdlFactory = Callable[..., Any]
 
@@ -69,8 +69,10 @@ def simulate_with_myhdl(
         "m_axis_s2mm_tlast": Signal(bool(0)),
     }
     published: list[Published] = []
-    processor = _Processor(ports, lanes, runtime, iter(messages), clock_mhz, drain_cycles, seed)
-    processor.watch = StallWatch(stall_cycles, lanes)
+    watch = StallWatch(stall_cycles, lanes, largest_output(runtime))
+    processor = _Processor(
+        ports, lanes, runtime, iter(messages), clock_mhz, drain_cycles, seed, watch
+    )
     processor.progress = progress
     processor.published = published
 
@@ -108,6 +110,7 @@ class _Processor:
         clock_mhz: float,
         drain_cycles: int,
         seed: int,
+        watch: StallWatch,
     ) -> None:
         self.ports = ports
         self.lanes = lanes
@@ -120,7 +123,8 @@ class _Processor:
         self.published: list[Published] = []
         self.beats: list[tuple[int, int, bool]] = []
         self.sending: Chunk | None = None
-        self.watch = StallWatch(DEFAULT_STALL_CYCLES, lanes)
+        self.sending_bytes = 0
+        self.watch = watch
         self.received = bytearray()
         self.stamp = 0
         self.cycle = 0
@@ -145,7 +149,7 @@ class _Processor:
                 or p["m_axis_s2mm_tvalid"]
             )
             self.quiet = 0 if busy or moved else self.quiet + 1
-            self.watch.check(self.cycle, busy, self._pending)
+            self.watch.check(self.cycle, busy, self._pending, self.sending_bytes, self._receiving())
             if upcoming is None and self.quiet >= self.drain:
                 raise StopSimulation
             while upcoming is not None:  # every message due by now, together
@@ -173,8 +177,8 @@ class _Processor:
             self.beats.pop(0)
             moved = True
             if not self.beats and self.sending is not None:
-                self.watch.completed(self.cycle, len(self.sending.to_bytes()))
-                self.sending = None
+                self.watch.completed(self.cycle, self.sending_bytes)
+                self.sending, self.sending_bytes = None, 0
         if p["m_axis_s2mm_tvalid"] and p["m_axis_s2mm_tready"]:
             keep = int(p["m_axis_s2mm_tkeep"])
             data = int(p["m_axis_s2mm_tdata"]).to_bytes(self.lanes, "little")
@@ -186,15 +190,18 @@ class _Processor:
                 self.published += self.runtime.receive(transfer, self.stamp, self.cycle)
         return moved
 
+    def _receiving(self) -> bool:
+        return bool(self.received) or bool(self.ports["m_axis_s2mm_tvalid"])
+
     def _pending(self) -> str:
-        receiving = bool(self.received) or bool(self.ports["m_axis_s2mm_tvalid"])
-        return pending_work(self.runtime, self.sending, receiving)
+        return pending_work(self.runtime, self.sending, self._receiving())
 
     def _drive(self) -> None:
         p = self.ports
         if not self.beats and (chosen := self.runtime.next_transfer()) is not None:
-            self.sending = chosen[0]
-            self.beats = _beats(chosen[0].to_bytes(), self.lanes)
+            transfer = chosen[0].to_bytes()
+            self.sending, self.sending_bytes = chosen[0], len(transfer)
+            self.beats = _beats(transfer, self.lanes)
         presenting = bool(p["s_axis_mm2s_tvalid"]) and not p["s_axis_mm2s_tready"]
         if self.beats and (presenting or self.chance.random() >= IDLE_FRACTION):
             data, keep, last = self.beats[0]

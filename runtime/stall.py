@@ -2,9 +2,10 @@
 
 While work is pending — a PS→PL transfer under way, messages waiting for the logic, a PL→PS
 transfer or message begun — some DMA transfer must complete now and then. When none has for
-`stall_cycles` plus four times the longest transfer seen so far (in beats, so large frames get
-their time), the replay stops with an error that says what was pending. Both simulation backends
-use it.
+`stall_cycles` plus four times the longest transfer that may be moving (in beats: the longest
+completed so far, the PS→PL transfer under way, and — while a PL→PS transfer is under way — the
+largest frame a publisher can send), the replay stops with an error that says what was pending.
+Both simulation backends use it.
 """
 
 from __future__ import annotations
@@ -14,6 +15,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from rfc.errors import RfcError
+from rfc.ir.infrastructure import CHUNK_HEADER_BYTES
 from rfc.runtime.core import Runtime
 from rfc.runtime.protocol import Chunk
 
@@ -31,36 +33,57 @@ class StallWatch:
 
     Attributes:
         stall_cycles: Cycles without a completed transfer that count as a stall (plus four
-            times the longest transfer seen).
+            times the longest transfer that may be moving).
         lanes: Bytes per beat of the DMA streams.
+        largest_output: Bytes of the largest PL→PS transfer a publisher can send.
     """
 
     stall_cycles: int
     lanes: int
+    largest_output: int = 0
     _last: int = field(default=0, init=False)
     _longest: int = field(default=0, init=False)
 
     def completed(self, cycle: int, transfer_bytes: int) -> None:
         """A transfer of `transfer_bytes` (chunk header included) completed at `cycle`."""
         self._last = cycle
-        self._longest = max(self._longest, math.ceil(transfer_bytes / self.lanes))
+        self._longest = max(self._longest, self._beats(transfer_bytes))
 
-    def window(self) -> int:
-        """Cycles without a completed transfer that count as a stall now."""
-        return self.stall_cycles + 4 * self._longest
+    def window(self, sending_bytes: int = 0, receiving: bool = False) -> int:
+        """Cycles without a completed transfer that count as a stall now.
 
-    def check(self, cycle: int, busy: bool, pending: Callable[[], str]) -> None:
+        Args:
+            sending_bytes: Bytes of the PS→PL transfer under way (0: none).
+            receiving: Whether a PL→PS transfer is under way.
+        """
+        moving = max(
+            self._longest,
+            self._beats(sending_bytes),
+            self._beats(self.largest_output) if receiving else 0,
+        )
+        return self.stall_cycles + 4 * moving
+
+    def check(
+        self,
+        cycle: int,
+        busy: bool,
+        pending: Callable[[], str],
+        sending_bytes: int = 0,
+        receiving: bool = False,
+    ) -> None:
         """Raise `StallError` when work is pending and nothing completed for the window.
 
         Args:
             cycle: The current cycle.
             busy: Whether work is pending (when not, the watch rests).
             pending: Says what is pending, for the error.
+            sending_bytes: Bytes of the PS→PL transfer under way (0: none).
+            receiving: Whether a PL→PS transfer is under way.
         """
         if not busy:
             self._last = cycle
             return
-        if cycle - self._last > self.window():
+        if cycle - self._last > self.window(sending_bytes, receiving):
             raise StallError(
                 f"the logic stalled: no DMA transfer completed for {cycle - self._last:,} cycles "
                 f"(cycle {cycle:,}) while {pending()}",
@@ -68,6 +91,16 @@ class StallWatch:
                 "--stall-cycles; otherwise an accelerator or converter waits for something "
                 "that never comes (a handshake it does not answer)",
             )
+
+    def _beats(self, transfer_bytes: int) -> int:
+        return math.ceil(transfer_bytes / self.lanes)
+
+
+def largest_output(runtime: Runtime) -> int:
+    """Bytes of the largest PL→PS transfer the design's publishers can send (header included)."""
+    infrastructure = runtime.plan.design.infrastructure
+    publishers = infrastructure.publishers if infrastructure is not None else ()
+    return CHUNK_HEADER_BYTES + max((c.max_frame_bytes for c in publishers), default=0)
 
 
 def pending_work(runtime: Runtime, sending: Chunk | None, receiving: bool) -> str:

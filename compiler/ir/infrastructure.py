@@ -28,9 +28,6 @@ from rfc.messages.layout import Layout
 
 #: Bytes of the chunk header (u16 id, u16 flags, u32 length) in front of every DMA transfer.
 CHUNK_HEADER_BYTES = 8
-#: Frame bound of a variable-size message when neither its definition nor ``maxBytes`` bounds
-#: it: a full-HD RGB image (1920 x 1080 x 3 bytes) plus its header fits.
-DEFAULT_MAX_FRAME_BYTES = 8 * 1024 * 1024
 
 
 class DmaDirection(StrEnum):

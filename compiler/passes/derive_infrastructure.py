@@ -16,7 +16,6 @@ from typing import ClassVar
 from rfc.errors import RfcError
 from rfc.ir.infrastructure import (
     CHUNK_HEADER_BYTES,
-    DEFAULT_MAX_FRAME_BYTES,
     Buffer,
     Converter,
     DmaChannel,
@@ -27,6 +26,7 @@ from rfc.ir.infrastructure import (
 )
 from rfc.ir.model import Block, BlockKind, Design, Stage
 from rfc.messages.layout import FieldKind, Layout, LayoutField
+from rfc.messages.limits import Limits
 from rfc.passes.frame_size import default_frame_bytes, frame_bound
 from rfc.passes.maxima import check_maxima
 from rfc.passes.placement import CrossingConverter, place
@@ -40,16 +40,16 @@ class DeriveInfrastructure:
 
     def apply(self, design: Design) -> Design:
         """Return the design at stage DERIVED, its `infrastructure` filled in."""
-        width = design.project.bus_width
+        width, maxima = design.project.bus_width, design.project.maxima
         placement = place(design)
         subscribers, publishers = (
             tuple(
                 [
-                    _converter(i, block, _converter_layout(block), width)
+                    _converter(i, block, _converter_layout(block), width, maxima)
                     for i, block in enumerate(declared)
                 ]
                 + [
-                    _crossing_converter(len(declared) + i, crossing, width)
+                    _crossing_converter(len(declared) + i, crossing, width, maxima)
                     for i, crossing in enumerate(crossings)
                 ]
             )
@@ -58,7 +58,7 @@ class DeriveInfrastructure:
                 (placement.publishers, placement.crossing_publishers),
             )
         )
-        check_maxima(design, (*subscribers, *publishers))
+        check_maxima(design, (*subscribers, *publishers), placement.software)
         buffers = tuple(
             Buffer(converter.block, field.path, converter.max_frame_bytes)
             for converter in publishers
@@ -93,7 +93,7 @@ def _converter_layout(block: Block) -> Layout:
     return port.layout
 
 
-def _max_frame_bytes(block: Block, layout: Layout, exact: int | None) -> int:
+def _max_frame_bytes(block: Block, layout: Layout, exact: int | None, maxima: Limits) -> int:
     if exact is not None:
         if block.max_bytes is not None and block.max_bytes < exact:
             raise RfcError(
@@ -104,7 +104,9 @@ def _max_frame_bytes(block: Block, layout: Layout, exact: int | None) -> int:
         return exact
     if block.max_bytes is not None:
         return block.max_bytes
-    return frame_bound(layout) or DEFAULT_MAX_FRAME_BYTES
+    bound = frame_bound(layout, maxima)
+    assert bound is not None, "with maxima every frame has a bound"
+    return bound
 
 
 def _timing(block: Block) -> tuple[int | None, int | None]:
@@ -122,15 +124,17 @@ def _block_of(design: Design, converter: Converter) -> Block | None:
     return None if converter.crossing is not None else design.block(converter.block)
 
 
-def _crossing_converter(index: int, crossing: CrossingConverter, width: int) -> Converter:
+def _crossing_converter(
+    index: int, crossing: CrossingConverter, width: int, maxima: Limits
+) -> Converter:
     """A converter at a crossing: named after its hardware port, with no topic or timing."""
     assert crossing.port.layout is not None
     block = Block(crossing.name, crossing.kind, crossing.connections[0].location)
-    converter = _converter(index, block, crossing.port.layout, width)
+    converter = _converter(index, block, crossing.port.layout, width, maxima)
     return replace(converter, crossing=crossing.crossing)
 
 
-def _converter(index: int, block: Block, layout: Layout, width: int) -> Converter:
+def _converter(index: int, block: Block, layout: Layout, width: int, maxima: Limits) -> Converter:
     """A subscriber receives whole messages; a publisher sends its selection, rest defaults."""
     length_fields: tuple[str, ...] = ()
     exact = layout.fixed_size
@@ -146,7 +150,7 @@ def _converter(index: int, block: Block, layout: Layout, width: int) -> Converte
         layout=layout,
         bus_width=width,
         frame_bytes=exact,
-        max_frame_bytes=_max_frame_bytes(block, layout, exact),
+        max_frame_bytes=_max_frame_bytes(block, layout, exact, maxima),
         length_fields=length_fields,
         period=period,
         deadline=deadline,

@@ -10,17 +10,29 @@ from collections.abc import Iterable, Iterator
 
 from rfc.errors import RfcError, did_you_mean
 from rfc.ir.infrastructure import Converter
-from rfc.ir.model import Design
+from rfc.ir.model import BlockKind, Design
 from rfc.messages.layout import FieldKind, Layout
 
 
-def check_maxima(design: Design, converters: Iterable[Converter]) -> None:
-    """Raise unless every per-field maximum names a string or sequence of some converter."""
-    paths = {path for converter in converters for path in variable_paths(converter.layout)}
+def check_maxima(design: Design, converters: Iterable[Converter], software: Iterable[str]) -> None:
+    """Raise unless every per-field maximum names an unbounded string or sequence of the logic.
+
+    The logic's messages are its converters' and its hardware accelerators' ports (a message
+    may travel between two accelerators only). A field bounded in its .msg keeps its bound, so
+    a maximum for it would do nothing: it is not offered either.
+    """
+    layouts = [converter.layout for converter in converters]
+    in_software = set(software)
+    for block in design.blocks_of(BlockKind.ACCELERATOR):
+        if block.name in in_software:
+            continue
+        layouts += [port.layout for port in block.ports if port.layout is not None]
+    paths = {path for layout in layouts for path in variable_paths(layout)}
     for path in design.project.maxima.fields:
         if path not in paths:
             raise RfcError(
-                f"maxima give '{path}', which is not a string or sequence of the system's messages",
+                f"maxima give '{path}', which is not an unbounded string or sequence of the "
+                "system's messages",
                 location=design.project.spots.get(f"maxima.fields.{path}", design.project.location),
                 hint=did_you_mean(path, sorted(paths))
                 or "write the dotted path of a string or sequence (rfc msg show TYPE lists them)",
@@ -37,8 +49,13 @@ def variable_paths(layout: Layout, prefix: str = "") -> Iterator[str]:
         if leaf.kind is FieldKind.PRIMITIVE:
             continue
         path = prefix + leaf.path
-        yield path
+        if not leaf.bound:
+            yield path
         if leaf.element is not None:
             yield from variable_paths(leaf.element, path + ".")
-        elif leaf.kind is not FieldKind.STRING and leaf.element_type == "string":
+        elif (
+            leaf.kind is not FieldKind.STRING
+            and leaf.element_type == "string"
+            and not (leaf.string_bound)
+        ):
             yield path + "[]"

@@ -313,6 +313,10 @@ def _maxima(
 ) -> tuple[Limits, dict[str, SourceLocation]]:
     """Check the ``maxima`` argument: the YAML form's keys, all pinned to the call."""
     known = (*common.MAXIMA_KEYS, "fields")
+    if not isinstance(given, Mapping):
+        raise RfcError(
+            f"maxima must be a mapping of {', '.join(known)}, not {given!r}", location=location
+        )
     for key in given:
         if key not in known:
             raise RfcError(

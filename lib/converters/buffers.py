@@ -22,7 +22,8 @@ from rfc.lib.converters.publisher import rfc_publisher
 from rfc.lib.converters.steps import Loop, Payload, Plan
 from rfc.lib.converters.toplevel import port_signals
 
-_DATA = (PortRole.FIELD, PortRole.LENGTH, PortRole.COUNT)
+#: The roles of the ports that carry data (not handshakes).
+DATA_ROLES = (PortRole.FIELD, PortRole.LENGTH, PortRole.COUNT)
 
 
 @dataclass(frozen=True)
@@ -31,12 +32,14 @@ class Buffer:
 
     Attributes:
         channel: The sub-stream or element channel it holds.
+        path: The field's dotted path, as the project's maxima name it.
         words: Its memory's depth: one message's worth (the FIFO's output register holds one
             more).
         bits: Bits per word.
     """
 
     channel: str
+    path: str
     words: int
     bits: int
 
@@ -49,16 +52,22 @@ class Buffer:
 def buffers_of(plan: Plan) -> tuple[Buffer, ...]:
     """The FIFOs a publisher of `plan` needs (none when it takes no strings or sequences)."""
     ports = ports_of(plan, Side.PUBLISHER)
+    # the channels of sequences of strings: each string's maximum is keyed ``path[]``
+    string_loops = {
+        s.element_channel for s in plan.steps if isinstance(s, Loop) and s.field.element is None
+    }
     found = []
     for step in plan.steps:
         if isinstance(step, Payload) and step.stream:
             bits = next(p.bits for p in ports if p.name == f"{step.stream}_tdata")
             beats = -(-step.maximum * step.element_size // (bits // 8))
-            found.append(Buffer(step.stream, _instances(plan, step.channel) * beats, bits))
+            path = step.path + ("[]" if step.channel in string_loops else "")
+            found.append(Buffer(step.stream, path, _instances(plan, step.channel) * beats, bits))
         elif isinstance(step, Loop) and step.count_port:
             name = plan.channels[step.element_channel].name
-            bits = sum(_element_bits(ports, name)) or 1
-            found.append(Buffer(name, _instances(plan, step.element_channel), bits))
+            bits = _word_bits(_element_bits(ports, name))
+            count = _instances(plan, step.element_channel)
+            found.append(Buffer(name, step.path, count, bits))
     return tuple(found)
 
 
@@ -73,11 +82,17 @@ def _instances(plan: Plan, channel: int) -> int:
 
 
 def _element_ports(ports: tuple[Port, ...], channel: str) -> list[Port]:
-    return [p for p in ports if p.group == channel and p.role in _DATA]
+    return [p for p in ports if p.group == channel and p.role in DATA_ROLES]
 
 
 def _element_bits(ports: tuple[Port, ...], channel: str) -> list[int]:
     return [p.bits for p in _element_ports(ports, channel)]
+
+
+def _word_bits(parts: list[int]) -> int:
+    """Bits of the FIFO word of an element channel, as `stream_buffers` packs it."""
+    parts = parts or [1]  # no data: a constant bit
+    return sum(parts) + (1 if len(parts) == 1 else 0)  # one part: padded, see below
 
 
 @block

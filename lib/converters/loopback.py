@@ -13,7 +13,7 @@ from typing import Any
 
 from myhdl import Signal, block, intbv
 
-from rfc.lib.converters.buffers import stream_buffers
+from rfc.lib.converters.buffers import DATA_ROLES, stream_buffers
 from rfc.lib.converters.ports import COUNTER_BITS, Direction, Port, PortRole, Side, ports_of
 from rfc.lib.converters.publisher import rfc_publisher
 from rfc.lib.converters.steps import ROOT, Plan
@@ -23,7 +23,6 @@ from rfc.lib.converters.wiring import follow
 
 #: Entity name of every loopback (the testbench instantiates it by that name).
 LOOPBACK = "rfc_loopback"
-_DATA = (PortRole.FIELD, PortRole.LENGTH, PortRole.COUNT)
 
 
 def loopback_ports(width: int) -> tuple[Port, ...]:
@@ -58,7 +57,7 @@ def rfc_loopback(plan: Plan, **ports: Any) -> Any:
     sub = port_signals(ports_of(plan, Side.SUBSCRIBER))
     pub = port_signals(ports_of(plan, Side.PUBLISHER))
     for port in ports_of(plan, Side.PUBLISHER):
-        if port.group == ROOT and port.role in _DATA:
+        if port.group == ROOT and port.role in DATA_ROLES:
             pub[port.name] = sub[port.name]
     pub["msg_valid"] = sub["msg_valid"]
     sub["msg_ready"] = pub["msg_ready"]

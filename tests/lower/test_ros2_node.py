@@ -6,6 +6,10 @@ import json
 import subprocess
 import sys
 
+from rfc.messages.layout import flatten
+from rfc.messages.limits import Limits
+from rfc.messages.rosbags_adapter import message_types
+from rfc.passes.frame_size import frame_bound
 from tests.runtime.support import system_copy
 from tests.support.cli import run_rfc
 
@@ -27,7 +31,10 @@ def test_build_writes_the_node_and_its_configuration(tmp_path):
         (0, "Pose_pub"),
         (1, "Pass_out0_pub"),
     ]
-    assert config["max_transfer"] == 8 + 8 * 1024 * 1024
+    # the largest PoseWithCovarianceStamped the logic accepts: frame_id at the default 4,096
+    types = message_types("ros2")
+    pose = flatten(types, "geometry_msgs/msg/PoseWithCovarianceStamped")
+    assert config["max_transfer"] == 8 + frame_bound(pose, Limits())
     report = (out / "report.md").read_text()
     assert "| ROS 2 node | 1 |" in report
     node = out / "sw" / "pose_mixed_node.py"

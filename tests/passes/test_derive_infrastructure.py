@@ -9,6 +9,7 @@ import pytest
 from rfc.ir.infrastructure import CHUNK_HEADER_BYTES, DmaDirection
 from rfc.messages.codec import default_values
 from rfc.messages.layout import flatten
+from rfc.messages.limits import Limits
 from rfc.messages.rosbags_adapter import message_types
 from rfc.messages.values import values_to_message
 from rfc.passes.frame_size import frame_bound
@@ -125,6 +126,37 @@ def test_frame_bound_covers_the_largest_bounded_message(tmp_path):
     bound = frame_bound(layout)
     assert size <= bound <= size + 16  # only alignment slack on top
     assert frame_bound(flatten(types, "sensor_msgs/Image")) is None  # unbounded
+
+
+@pytest.mark.parametrize(
+    ("type_name", "largest", "maxima"),
+    [
+        (
+            "sensor_msgs/msg/JointState",
+            {"header": {"stamp": {"sec": 1, "nanosec": 2}, "frame_id": "x" * 9},
+             "name": ["abcdefgh", "ij"], "position": [1.0, 2.0], "velocity": [], "effort": [3.0]},
+            Limits(string=9, sequence=2, fields={"name[]": 8}),
+        ),
+        (
+            "tf2_msgs/msg/TFMessage",
+            {"transforms": [
+                {"header": {"stamp": {"sec": 0, "nanosec": 0}, "frame_id": "map"},
+                 "child_frame_id": "odom",
+                 "transform": {"translation": {"x": 0.0, "y": 0.0, "z": 0.0},
+                               "rotation": {"x": 0.0, "y": 0.0, "z": 0.0, "w": 1.0}}}
+            ] * 3},
+            Limits(string=4, sequence=3),
+        ),
+    ],
+)  # fmt: skip
+def test_the_maxima_bound_an_unbounded_frame(type_name, largest, maxima):
+    """The largest message the maxima allow fits in the bound, with only alignment slack."""
+    types = message_types("ros2")
+    layout = flatten(types, type_name)
+    size = len(types.serialize(types.build(type_name, largest), type_name))
+    bound = frame_bound(layout, maxima)
+    assert size <= bound <= 2 * size  # alignment slack only (each field its worst padding)
+    assert frame_bound(layout) is None
 
 
 def test_declared_max_bytes_bounds_a_variable_frame(tmp_path):

@@ -61,3 +61,13 @@ def test_the_window_grows_with_the_longest_transfer_and_rests_while_idle():
         watch.check(561, busy=True, pending=lambda: "x")
     watch.check(5000, busy=False, pending=lambda: "x")  # idle: the watch rests
     watch.check(5500, busy=True, pending=lambda: "x")
+
+
+def test_a_long_transfer_under_way_gets_its_time_before_it_completes():
+    watch = StallWatch(stall_cycles=100, lanes=8, largest_output=8000)
+    # the first PS→PL transfer: 8,000 bytes = 1,000 beats, nothing completed yet
+    watch.check(3000, busy=True, pending=lambda: "x", sending_bytes=8000)
+    # a PL→PS transfer under way may be as long as the largest publisher frame
+    watch.check(3000, busy=True, pending=lambda: "x", receiving=True)
+    with pytest.raises(StallError):
+        watch.check(4200, busy=True, pending=lambda: "x", sending_bytes=8000)

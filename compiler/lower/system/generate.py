@@ -30,6 +30,7 @@ from rfc.lower.system.components import (
     fork_component,
     manager_component,
 )
+from rfc.lower.system.devices import block_rams, bram36
 from rfc.lower.system.interfaces import MESSAGE
 from rfc.lower.system.top import CLOCK, RESET_N, Interface, Terminal, TopBuilder, wire_connection
 from rfc.messages.limits import Limits
@@ -175,6 +176,7 @@ def generate_system(
         for (port, role), (suffix, name) in hardware.pins.items():
             interfaces.setdefault((block.name, port), {})[role] = Terminal(cells[suffix], name)
 
+    _check_buffer_memory(design, buffers)  # after the accelerators: their errors come first
     forks: dict[int, Component] = {}
     by_source: dict[tuple[str, str], list[Connection]] = defaultdict(list)
     for connection in infrastructure.hardware_connections:
@@ -222,6 +224,33 @@ def _top_entity(design: Design) -> EntityDecl:
             PortDecl(f"{group}_tlast", data, 1, True),
         ]
     return EntityDecl(top_name(design), tuple(ports))
+
+
+def _check_buffer_memory(design: Design, buffers: Mapping[str, tuple[Buffer, ...]]) -> None:
+    """Refuse buffers that need more block RAM than the part has, naming the largest one."""
+    if not buffers:
+        return
+    need = {
+        (block, b.path): bram36(b.bits, b.words) for block, held in buffers.items() for b in held
+    }
+    have, known = block_rams(design.project.fpga_part)
+    if sum(need.values()) <= have:
+        return
+    block, path = max(need, key=lambda key: need[key])
+    device = f"the {design.project.fpga_part}'s" if known else "any supported device's"
+    location = (
+        design.block(block).location
+        if any(b.name == block for b in design.blocks)
+        else design.project.location
+    )
+    raise RfcError(
+        f"the publishers' buffers need {sum(need.values()):,} block RAMs of 36 Kb at the "
+        f"project's maxima, more than {device} {have:,}; the largest holds '{path}' of "
+        f"'{block}' ({need[(block, path)]:,})",
+        location=location,
+        hint=f"give the project smaller maxima, e.g. maxima: {{string: 64, fields: {{{path}: N}}}} "
+        "(docs/spec.md)",
+    )
 
 
 def _wire_dma(builder: TopBuilder, label: str, converter: Converter, side: Side) -> None:

@@ -13,6 +13,7 @@ from rfc.errors import RfcError
 from rfc.ir.model import BlockKind, Design
 from rfc.lower.artifacts import ReportSection
 from rfc.lower.report import markdown_table
+from rfc.lower.system.devices import bram36
 from rfc.lower.system.generate import SystemHardware
 from rfc.lower.system.latency import publisher_latency, subscriber_latency
 from rfc.toolchain import GhdlError, estimate_resources
@@ -52,15 +53,6 @@ def latency_section(design: Design, system: SystemHardware) -> ReportSection:
     return ReportSection("Latencies", tuple(lines))
 
 
-#: Block RAM 36 Kb aspect ratios of the 7 series (width, depth), parity bits used as data.
-_BRAM36 = ((72, 512), (36, 1024), (18, 2048), (9, 4096), (4, 8192), (2, 16384), (1, 32768))
-
-
-def bram36(bits: int, words: int) -> int:
-    """The fewest 36 Kb block RAMs a memory of `words` words of `bits` fits in."""
-    return min(math.ceil(bits / w) * math.ceil(words / d) for w, d in _BRAM36)
-
-
 def buffers_section(system: SystemHardware) -> ReportSection:
     """The publishers' buffers: what they hold and how much block RAM they take."""
     rows: list[list[object]] = []
@@ -68,7 +60,7 @@ def buffers_section(system: SystemHardware) -> ReportSection:
         for buffer in buffers:
             kib = f"{buffer.size_bits / 8192:.1f}"
             blocks = bram36(buffer.bits, buffer.words)
-            rows.append([f"`{block}`", f"`{buffer.channel}`", buffer.words, buffer.bits, kib])
+            rows.append([f"`{block}`", f"`{buffer.path}`", buffer.words, buffer.bits, kib])
             rows[-1].append(blocks)
     total = sum(int(row[5]) for row in rows)
     lines = [
@@ -83,7 +75,7 @@ def buffers_section(system: SystemHardware) -> ReportSection:
             (False, False, True, True, True, True),
         ),
     ]
-    return ReportSection("Buffers", tuple(lines))
+    return ReportSection("Buffer memory", tuple(lines))
 
 
 def resources_section(system: SystemHardware) -> ReportSection:

@@ -168,3 +168,20 @@ def test_estimating_a_logic_with_hls_cores_is_refused(tmp_path):
     assert result.returncode == 1
     assert "its HLS cores come from Vitis HLS" in result.stderr
     assert not (tmp_path / "b").exists()
+
+
+def test_buffers_beyond_the_parts_block_ram_are_refused_naming_the_largest(tmp_path):
+    source = ROOT / "examples/multi_type"
+    for name in ("MultiType.yaml", "passthrough.py"):
+        text = (source / name).read_text()
+        if name.endswith(".yaml"):  # back to the default maxima
+            text = "\n".join(line for line in text.splitlines() if "maxima:" not in line)
+        (tmp_path / name).write_text(text)
+    message = refused(tmp_path / "MultiType.yaml", tmp_path / "b")
+    assert "the publishers' buffers need 2,308 block RAMs of 36 Kb at the project's maxima" in (
+        message
+    )
+    assert "more than the xc7z020clg400-1's 140; the largest holds 'ranges' of 'Scan_pub'" in (
+        message
+    )
+    assert "maxima: {string: 64, fields: {ranges: N}}" in message

@@ -15,6 +15,7 @@ from typing import Any
 from myhdl import StopSimulation, block, delay, instance
 
 from rfc.ir.infrastructure import Converter
+from rfc.lib.converters.buffers import buffered_ports, buffered_publisher, buffers_of
 from rfc.lib.converters.build import publisher_top, subscriber_top
 from rfc.lib.converters.plan import plan
 from rfc.lib.converters.ports import Direction, Port, PortRole, Side, dma_ports, ports_of
@@ -59,9 +60,9 @@ def subscriber_latency(converter: Converter, limits: Limits) -> int | None:
 
 
 def publisher_latency(converter: Converter, limits: Limits) -> int | None:
-    """Cycles from ``msg_valid`` to the last beat accepted."""
+    """Cycles from ``msg_valid`` to the last beat accepted (with its buffers, as generated)."""
     chosen = plan(converter.layout, converter.bus_width, limits)
-    ports = (*dma_ports(chosen, Side.PUBLISHER), *ports_of(chosen, Side.PUBLISHER))
+    ports = buffered_ports(chosen)
 
     def drive(s: Mapping[str, Any], cycle: Callable[[], Any]) -> Generator[Any, None, int | None]:
         s["msg_valid"].next = 1
@@ -74,7 +75,12 @@ def publisher_latency(converter: Converter, limits: Limits) -> int | None:
         return None
 
     with elaboration():
-        return _measure(publisher_top(chosen), ports, drive)
+        top = (
+            top_block("latency_dut", [p.name for p in ports], buffered_publisher, plan=chosen)
+            if buffers_of(chosen)
+            else publisher_top(chosen)
+        )
+        return _measure(top, ports, drive)
 
 
 def accelerator_latency(

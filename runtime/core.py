@@ -192,12 +192,12 @@ class Runtime:
         It drops what is not a message of its type and what holds a string or sequence longer
         than the maxima it was built for; both are counted here rather than lost in the logic.
         """
+        layout = self._logic_layouts[subscriber]
         try:
-            values = decode(self._logic_layouts[subscriber], data)
+            values = decode(layout, data)
         except FrameError:
             return "malformed"
-        maxima = self.plan.design.project.maxima
-        return None if maxima.beyond(self._logic_layouts[subscriber], values) is None else "maximum"
+        return None if self.plan.design.project.maxima.beyond(layout, values) is None else "maximum"
 
     def _publish(self, route: ToTopic, data: bytes, stamp: int, out: list[Published]) -> None:
         try:

@@ -86,10 +86,9 @@ class _Replay:
                 continue
             chunk, _ = chosen
             self.sending = chunk
-            transfer = chunk.to_bytes()
-            await self.source.send(transfer)
+            await self.source.send(chunk.to_bytes())
             await self.source.wait()
-            self.watch.completed(self.cycles(), len(transfer))
+            self.watch.completed(self.cycles(), chunk.size)
 
     async def receive(self) -> None:
         """The PL→PS DMA: every transfer to the runtime."""
@@ -106,8 +105,7 @@ class _Replay:
             self.sending is not None
             or self.runtime.waiting() > 0
             or not self.source.idle()
-            or self.sink.active
-            or not self.sink.empty()
+            or self.receiving()
             or self.runtime.in_flight()
         )
 
@@ -125,7 +123,7 @@ class _Replay:
             busy = self.busy()
             if not busy and self.received_transfers == before:
                 return
-            sending = len(self.sending.to_bytes()) if self.sending is not None else 0
+            sending = self.sending.size if self.sending is not None else 0
             self.watch.check(self.cycles(), busy, self.pending, sending, self.receiving())
 
     def receiving(self) -> bool:

@@ -123,7 +123,6 @@ class _Processor:
         self.published: list[Published] = []
         self.beats: list[tuple[int, int, bool]] = []
         self.sending: Chunk | None = None
-        self.sending_bytes = 0
         self.watch = watch
         self.received = bytearray()
         self.stamp = 0
@@ -149,7 +148,8 @@ class _Processor:
                 or p["m_axis_s2mm_tvalid"]
             )
             self.quiet = 0 if busy or moved else self.quiet + 1
-            self.watch.check(self.cycle, busy, self._pending, self.sending_bytes, self._receiving())
+            sending = self.sending.size if self.sending is not None else 0
+            self.watch.check(self.cycle, busy, self._pending, sending, self._receiving())
             if upcoming is None and self.quiet >= self.drain:
                 raise StopSimulation
             while upcoming is not None:  # every message due by now, together
@@ -177,8 +177,8 @@ class _Processor:
             self.beats.pop(0)
             moved = True
             if not self.beats and self.sending is not None:
-                self.watch.completed(self.cycle, self.sending_bytes)
-                self.sending, self.sending_bytes = None, 0
+                self.watch.completed(self.cycle, self.sending.size)
+                self.sending = None
         if p["m_axis_s2mm_tvalid"] and p["m_axis_s2mm_tready"]:
             keep = int(p["m_axis_s2mm_tkeep"])
             data = int(p["m_axis_s2mm_tdata"]).to_bytes(self.lanes, "little")
@@ -199,9 +199,8 @@ class _Processor:
     def _drive(self) -> None:
         p = self.ports
         if not self.beats and (chosen := self.runtime.next_transfer()) is not None:
-            transfer = chosen[0].to_bytes()
-            self.sending, self.sending_bytes = chosen[0], len(transfer)
-            self.beats = _beats(transfer, self.lanes)
+            self.sending = chosen[0]
+            self.beats = _beats(self.sending.to_bytes(), self.lanes)
         presenting = bool(p["s_axis_mm2s_tvalid"]) and not p["s_axis_mm2s_tready"]
         if self.beats and (presenting or self.chance.random() >= IDLE_FRACTION):
             data, keep, last = self.beats[0]

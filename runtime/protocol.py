@@ -49,6 +49,11 @@ class Chunk:
     length: int
     payload: bytes
 
+    @property
+    def size(self) -> int:
+        """Bytes of the transfer: header and payload."""
+        return HEADER_SIZE + len(self.payload)
+
     def to_bytes(self) -> bytes:
         """Serialize header and payload, as the DMA moves them."""
         return HEADER.pack(self.id, int(self.flags), self.length) + self.payload

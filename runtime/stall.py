@@ -115,7 +115,7 @@ def pending_work(runtime: Runtime, sending: Chunk | None, receiving: bool) -> st
     if sending is not None:
         name = runtime.plan.subscriber_names.get(sending.id, f"id {sending.id}")
         parts.append(
-            f"the logic had not taken all of a {len(sending.to_bytes())}-byte PS→PL transfer "
+            f"the logic had not taken all of a {sending.size}-byte PS→PL transfer "
             f"to subscriber '{name}'"
         )
     if receiving:

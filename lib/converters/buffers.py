@@ -65,7 +65,7 @@ def buffers_of(plan: Plan) -> tuple[Buffer, ...]:
             found.append(Buffer(step.stream, path, _instances(plan, step.channel) * beats, bits))
         elif isinstance(step, Loop) and step.count_port:
             name = plan.channels[step.element_channel].name
-            bits = _word_bits(_element_bits(ports, name))
+            bits = _word_bits([p.bits for p in _element_ports(ports, name)])
             count = _instances(plan, step.element_channel)
             found.append(Buffer(name, step.path, count, bits))
     return tuple(found)
@@ -83,10 +83,6 @@ def _instances(plan: Plan, channel: int) -> int:
 
 def _element_ports(ports: tuple[Port, ...], channel: str) -> list[Port]:
     return [p for p in ports if p.group == channel and p.role in DATA_ROLES]
-
-
-def _element_bits(ports: tuple[Port, ...], channel: str) -> list[int]:
-    return [p.bits for p in _element_ports(ports, channel)]
 
 
 def _word_bits(parts: list[int]) -> int:

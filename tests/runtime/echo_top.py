@@ -167,25 +167,24 @@ def echo_logic(
     return assemble, header_word, lookup_index, lookup, handshake, control
 
 
+def contract_signals(width: int) -> list:
+    """Fresh signals for the contract's ports, in their order: clock, reset, PS→PL, PL→PS."""
+    lanes = width // 8
+    streams = [
+        signal
+        for _ in range(2)
+        for signal in (
+            Signal(intbv(0)[width:]),
+            Signal(intbv(0)[lanes:]),
+            *(Signal(bool(0)) for _ in range(3)),
+        )
+    ]
+    return [Signal(bool(0)), ResetSignal(0, active=0, isasync=False), *streams]
+
+
 def echo_instance(width: int, routes: tuple[int, ...], cut_beats: int = 0):
     """Elaborate the fixture with fresh signals (named as the contract's ports)."""
-    lanes = width // 8
-    return echo_logic(
-        Signal(bool(0)),
-        ResetSignal(0, active=0, isasync=False),
-        Signal(intbv(0)[width:]),
-        Signal(intbv(0)[lanes:]),
-        Signal(bool(0)),
-        Signal(bool(0)),
-        Signal(bool(0)),
-        Signal(intbv(0)[width:]),
-        Signal(intbv(0)[lanes:]),
-        Signal(bool(0)),
-        Signal(bool(0)),
-        Signal(bool(0)),
-        routes=routes,
-        cut_beats=cut_beats,
-    )
+    return echo_logic(*contract_signals(width), routes=routes, cut_beats=cut_beats)
 
 
 @dataclass(frozen=True)

@@ -11,11 +11,11 @@ from __future__ import annotations
 from functools import partial
 from pathlib import Path
 
-from myhdl import ResetSignal, Signal, always_comb, always_seq, block, intbv
+from myhdl import Signal, always_comb, always_seq, block
 
 from rfc.ir.model import Design
 from rfc.toolchain import convert_myhdl
-from tests.runtime.echo_top import FixtureTop
+from tests.runtime.echo_top import FixtureTop, contract_signals
 
 #: The chunk header the babbling logic starts with: id 0, START, a 1 MiB message.
 _HEADER = (1 << 20) << 32 | 1 << 16
@@ -60,16 +60,9 @@ def stuck_logic(
 
 def _top(design: Design, directory: Path, babble: bool) -> FixtureTop:
     width = design.project.bus_width
-    lanes = width // 8
     name = "babbling_top" if babble else "deaf_top"
-    signals = [
-        Signal(bool(0)),
-        ResetSignal(0, active=0, isasync=False),
-        *(Signal(intbv(0)[width:]), Signal(intbv(0)[lanes:]), *(Signal(bool(0)) for _ in range(3))),
-        *(Signal(intbv(0)[width:]), Signal(intbv(0)[lanes:]), *(Signal(bool(0)) for _ in range(3))),
-    ]
     files = convert_myhdl(
-        stuck_logic(*signals, babble=babble), name, directory, verilog=False,
+        stuck_logic(*contract_signals(width), babble=babble), name, directory, verilog=False,
         header="rfc test fixture: a logic that stalls",
     )  # fmt: skip
     return FixtureTop(name, files, width, partial(stuck_logic, babble=babble))

@@ -238,11 +238,8 @@ def _check_buffer_memory(design: Design, buffers: Mapping[str, tuple[Buffer, ...
         return
     block, path = max(need, key=lambda key: need[key])
     device = f"the {design.project.fpga_part}'s" if known else "any supported device's"
-    location = (
-        design.block(block).location
-        if any(b.name == block for b in design.blocks)
-        else design.project.location
-    )
+    # a crossing publisher is no block of the spec: the project stands for it
+    location = next((b.location for b in design.blocks if b.name == block), design.project.location)
     raise RfcError(
         f"the publishers' buffers need {sum(need.values()):,} block RAMs of 36 Kb at the "
         f"project's maxima, more than {device} {have:,}; the largest holds '{path}' of "

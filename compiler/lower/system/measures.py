@@ -55,14 +55,12 @@ def latency_section(design: Design, system: SystemHardware) -> ReportSection:
 
 def buffers_section(system: SystemHardware) -> ReportSection:
     """The publishers' buffers: what they hold and how much block RAM they take."""
-    rows: list[list[object]] = []
-    for block, buffers in system.buffers.items():
-        for buffer in buffers:
-            kib = f"{buffer.size_bits / 8192:.1f}"
-            blocks = bram36(buffer.bits, buffer.words)
-            rows.append([f"`{block}`", f"`{buffer.path}`", buffer.words, buffer.bits, kib])
-            rows[-1].append(blocks)
-    total = sum(int(row[5]) for row in rows)
+    held = [(block, b, bram36(b.bits, b.words)) for block, bs in system.buffers.items() for b in bs]
+    rows: list[list[object]] = [
+        [f"`{block}`", f"`{b.path}`", b.words, b.bits, f"{b.size_bits / 8192:.1f}", brams]
+        for block, b, brams in held
+    ]
+    total = sum(brams for _, _, brams in held)
     lines = [
         "A publisher takes a message's strings and sequences only after its other fields (it "
         "needs every length for the frame length), so each gets a FIFO that holds one message "

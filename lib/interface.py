@@ -128,6 +128,8 @@ def array_copies(array: ArrayPins) -> Any:
 
 @block
 def copy_signal(source: Any, destination: Any) -> Any:
+    """Drive `destination` with `source`, combinationally."""
+
     @always_comb
     def copy() -> None:
         destination.next = source

@@ -14,7 +14,20 @@ import textwrap
 import numpy as np
 import pytest
 
-from rfc.messages.rosbags_adapter import message_types, read_bag, write_bag
+from rfc.errors import RfcError
+from rfc.lib.converters.plan import plan
+from rfc.lib.converters.ports import Side, accelerator_signature, check_names
+from rfc.lib.converters.toplevel import port_signals
+from rfc.lib.interface import interface_object
+from rfc.messages.layout import flatten
+from rfc.messages.limits import Limits
+from rfc.messages.rosbags_adapter import (
+    MessageTypes,
+    Middleware,
+    message_types,
+    read_bag,
+    write_bag,
+)
 from tests.support.cli import run_rfc
 
 ROI_CENTER = '''
@@ -110,3 +123,89 @@ def test_a_block_on_nested_fields_and_fixed_arrays_equals_its_reference_in_ghdl(
         for m in infos
     ]
     assert [list(map(int, t.vertex_indices)) for t in outputs] == expected
+
+
+KINDS = """\
+bool flag
+int8 i8
+uint8 u8
+int16 i16
+uint16 u16
+int32 i32
+uint32 u32
+int64 i64
+uint64 u64
+float32 f32
+float64 f64
+string label
+uint16[3] fixed
+float32[] samples
+kinds_msgs/Point[2] corners
+kinds_msgs/Point[] path
+string[] tags
+kinds_msgs/Point centre
+uint8 from
+"""
+
+
+@pytest.fixture(scope="module")
+def kinds_types(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("msgs") / "kinds_msgs" / "msg"
+    folder.mkdir(parents=True)
+    (folder / "Kinds.msg").write_text(KINDS)
+    (folder / "Point.msg").write_text("float64 x\nint32 y\n")
+    return {
+        middleware: MessageTypes(middleware, msg_paths=[folder.parent])
+        for middleware in (Middleware.ROS1, Middleware.ROS2)
+    }
+
+
+def kinds_interface(types, width, side=Side.SUBSCRIBER):
+    layout = flatten(types, "kinds_msgs/msg/Kinds")
+    signature = accelerator_signature(plan(layout, width, Limits()), side, "k")
+    return interface_object(signature, port_signals(signature), "port k")
+
+
+@pytest.mark.parametrize("width", [8, 32, 64])
+@pytest.mark.parametrize("middleware", [Middleware.ROS1, Middleware.ROS2])
+def test_the_interface_object_mirrors_every_field_kind(kinds_types, middleware, width):
+    k, arrays = kinds_interface(kinds_types[middleware], width)
+    assert [len(k.flag), len(k.i8), len(k.u16), len(k.i64), len(k.f32), len(k.f64)] == [
+        1, 8, 16, 64, 32, 64]  # fmt: skip
+    assert isinstance(k.flag.val, bool)
+    assert [len(s) for s in k.fixed] == [16, 16, 16]
+    beat = max(width // 8, 4)
+    assert len(k.samples.data) == 8 * beat
+    assert len(k.samples.keep) == beat
+    for stream in (k.label, k.samples, k.tags.item):
+        assert {"length", "data", "keep", "valid", "ready", "last"} <= set(vars(stream))
+    assert [len(c.x) for c in k.corners] == [64, 64]
+    assert len(k.corners[1].y) == 32
+    assert {"length", "valid", "ready", "last", "x", "y"} <= set(vars(k.path))
+    assert {"length", "valid", "ready", "last", "item"} <= set(vars(k.tags))
+    assert len(k.centre.x) == 64
+    assert len(k.from_) == 8  # a Python keyword gets PEP 8's trailing underscore
+    assert {"valid", "ready"} <= set(vars(k))
+    assert "error" not in vars(k)
+    assert [a.elements for a in arrays] == [k.fixed]  # lists of signals copy their pins
+
+
+def test_an_output_interface_object_has_the_publisher_side_handshakes(kinds_types):
+    k, _ = kinds_interface(kinds_types[Middleware.ROS2], 64, Side.PUBLISHER)
+    assert {"length", "data", "valid", "ready"} <= set(vars(k.samples))
+    assert "keep" not in vars(k.samples)
+    assert "last" not in vars(k.path)
+
+
+@pytest.mark.parametrize("name", ["valid", "ready"])
+def test_a_field_named_like_a_handshake_is_refused_naming_it(tmp_path, name):
+    folder = tmp_path / "clash_msgs" / "msg"
+    folder.mkdir(parents=True)
+    (folder / "Clash.msg").write_text(f"float64 x\nbool {name}\n")
+    types = MessageTypes(Middleware.ROS2, msg_paths=[tmp_path])
+    with pytest.raises(RfcError) as caught:
+        check_names(plan(flatten(types, "clash_msgs/msg/Clash"), 64, Limits()))
+    message = str(caught.value)
+    assert f"field '{name}' of clash_msgs/msg/Clash" in message
+    assert f"the {name} of the message" in message
+    assert f"exclude '{name}'" in message

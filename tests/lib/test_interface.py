@@ -209,3 +209,40 @@ def test_a_field_named_like_a_handshake_is_refused_naming_it(tmp_path, name):
     assert f"field '{name}' of clash_msgs/msg/Clash" in message
     assert f"the {name} of the message" in message
     assert f"exclude '{name}'" in message
+
+
+UNDRIVEN = """
+from myhdl import always_seq, block
+
+import rfc
+
+
+@rfc.accelerator(inputs={"p": "geometry_msgs/Point"}, outputs={"m": "geometry_msgs/Point"})
+@block
+def forgetful(clk, rst, p, m):
+    @always_seq(clk.posedge, reset=rst)
+    def logic():
+        p.ready.next = 1
+        m.valid.next = p.valid
+        m.x.next = p.x
+        m.y.next = p.y
+
+    return logic
+
+
+project = rfc.Project("Forgetful", middleware="ROS2", bus_width=64)
+project.subscriber("sub", "geometry_msgs/Point") >> project.accelerator("acc", forgetful) >> (
+    project.publisher("pub", "geometry_msgs/Point")
+)
+"""
+
+
+def test_an_output_the_block_never_drives_is_refused_by_its_member(tmp_path):
+    spec = tmp_path / "forgetful.py"
+    spec.write_text(UNDRIVEN)
+    result = run_rfc("build", spec, "-o", tmp_path / "out")
+    assert result.returncode == 1
+    assert "Traceback" not in result.stderr
+    assert "MyHDL accelerator 'forgetful' never drives m.z (port m_z)" in result.stderr
+    assert "m.z.next = 0" in result.stderr
+    assert not (tmp_path / "out").exists()

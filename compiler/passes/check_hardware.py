@@ -170,17 +170,23 @@ def takes_interfaces(
         extra = [n for n in required if n not in typed]
     problems = []
     if missing:
-        problems.append(f"it lacks {', '.join(missing)}")
+        problems.append(f"it lacks {_some(missing)}")
     if extra:
-        problems.append(f"it also needs {', '.join(extra)}, which rfc does not provide")
+        problems.append(f"it also needs {_some(extra)}, which rfc does not provide")
     raise RfcError(
         f"MyHDL block '{plain.__name__}' of accelerator '{accelerator.name}' does not have "
         f"the ports of its messages: {'; '.join(problems)}",
         location=accelerator.location,
         hint=f"declare it as {plain.__name__}({', '.join(typed)}) taking one interface object "
         f"per message port (`rfc stub SPEC {accelerator.name} --lang myhdl` prints a skeleton), "
-        f"or with flat ports as {plain.__name__}({', '.join(flat)}) (docs/accelerators.md)",
+        f"or with flat ports as {plain.__name__}({_some(flat, 12)}) (docs/accelerators.md)",
     )
+
+
+def _some(names: Sequence[str], shown: int = 8) -> str:
+    """The first names, and how many more: a block's ports can number in the hundreds."""
+    more = len(names) - shown
+    return ", ".join(names[:shown]) + (f", … ({more} more)" if more > 0 else "")
 
 
 def vhdl_entity(accelerator: AcceleratorType, expected: Sequence[Port]) -> VhdlEntity:

@@ -15,14 +15,16 @@ from rfc.passes.flatten_messages import FlattenMessages
 from rfc.passes.resolve_scheduler import ResolveScheduler
 from rfc.passes.resolve_types import ResolveTypes
 
-PIPELINE: tuple[Pass, ...] = (
+#: The passes that derive the holistic model from a spec.
+MODEL_PIPELINE: tuple[Pass, ...] = (
     ResolveTypes(),
     CheckConnections(),
     ExpandSelections(),
     FlattenMessages(),
     DeriveInfrastructure(),
-    CheckHardware(),
 )
+#: `rfc check`'s: the model, then the rules its logic must obey.
+PIPELINE: tuple[Pass, ...] = (*MODEL_PIPELINE, CheckHardware())
 #: `rfc build`'s pipeline: the scheduler left to the DSE is chosen too (`rfc check` skips it).
 BUILD_PIPELINE: tuple[Pass, ...] = (*PIPELINE, ResolveScheduler())
 #: The name of the front-end's output, accepted wherever a pass name is (``--dump-ir-after``).

@@ -1,13 +1,13 @@
 """The pass-through accelerators of the multi-type system: hardware block and Python model.
 
-`pass_through` is rfc's generic pass-through block (`rfc.lib.passthrough`), one block for
-Image, LaserScan and TwistStamped alike. `identity` is its reference model (and, switched to
+`typed_pass_through` is rfc's generic pass-through block on interface objects
+(`rfc.lib.passthrough`), one block for Image, LaserScan and TwistStamped alike. `identity` is its reference model (and, switched to
 ROS-SW, the software implementation): it returns the message it is given.
 """
 
-from rfc.lib.passthrough import pass_through
+from rfc.lib.passthrough import typed_pass_through
 
-__all__ = ["identity", "pass_through"]
+__all__ = ["identity", "typed_pass_through"]
 
 
 def identity(message):

@@ -143,18 +143,14 @@ def round_to_format(wide, narrow, fmt: FixedFormat):
     """A value with ``2 * fmt.frac_bits`` fraction bits, rounded half up and saturated (comb)."""
     bits = len(wide) + 1
     shift = fmt.frac_bits
-    # Constants wider than 31 bits reach VHDL only as ROM contents.
-    half_rom, low_rom, high_rom = ((1 << shift) >> 1,), (fmt.min_raw,), (fmt.max_raw,)
+    # Constants wider than 31 bits reach VHDL as the initial values of undriven signals.
+    half = Signal(intbv((1 << shift) >> 1, min=0, max=1 << shift))
+    low, high = fmt.signal(fmt.min_raw), fmt.signal(fmt.max_raw)
 
     @always_comb
     def round_half_up():
         v = intbv(0, min=-(1 << (bits - 1)), max=1 << (bits - 1))
-        low = intbv(0, min=-(1 << (bits - 1)), max=1 << (bits - 1))
-        high = intbv(0, min=-(1 << (bits - 1)), max=1 << (bits - 1))
-        low[:] = low_rom[0]
-        high[:] = high_rom[0]
-        v[:] = half_rom[0]
-        v[:] = v + wide
+        v[:] = wide + half
         v[:] = v >> shift
         if v < low:
             narrow.next = low

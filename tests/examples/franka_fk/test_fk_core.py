@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 from myhdl import ResetSignal, Signal, intbv
 
 from rfc.toolchain import convert_myhdl
@@ -84,6 +85,7 @@ def test_myhdl_simulation_matches_the_model():
     assert set(run.latencies) == {load("fk_core").fk_program().cycles}
 
 
+@pytest.mark.slow
 def test_converted_vhdl_with_flat_ports_matches_the_model(tmp_path):
     inputs = flat_inputs(3, seed=5)
     ports = flat_ports(core_ports())

@@ -1,0 +1,162 @@
+"""MyHDL fixed-point multiply and multiply-accumulate, pipelined for the DSP48.
+
+The stages are the DSP48E1's own registers, so synthesis can fold them into the slice: operands
+(A/B registers), product (M register), sum (P register); a fabric register then rounds half up
+and saturates to the format. Both blocks take a pair every cycle (II = 1) and hold results
+until taken (the whole pipeline stalls). Latencies, in cycles from the input handshake to
+`out_valid`: `MULTIPLY_LATENCY`, `MAC_LATENCY`. Bit-exact with `rfc.lib.arith.mac`.
+"""
+
+from __future__ import annotations
+
+from myhdl import Signal, always_comb, always_seq, block, intbv
+
+from rfc.lib.arith.mac import MAC_GUARD_BITS
+from rfc.lib.fixed import FixedFormat
+
+#: Operand, product and result registers.
+MULTIPLY_LATENCY = 2
+#: Operand, product, sum and rounded-result registers.
+MAC_LATENCY = 3
+
+
+def _signed(bits: int) -> Signal:
+    return Signal(intbv(0, min=-(1 << (bits - 1)), max=1 << (bits - 1)))
+
+
+@block
+def fixed_multiply(clk, rst, in_valid, in_ready, a, b, out_valid, out_ready, product, fmt):
+    """``a * b`` in `fmt`, rounded half up and saturated (`rfc.lib.arith.mac.multiply`).
+
+    Args:
+        clk: Clock.
+        rst: Synchronous reset (a MyHDL ``ResetSignal``).
+        in_valid: Input, `a` and `b` hold a pair to take.
+        in_ready: Output, the block takes the pair on this cycle when `in_valid` is high.
+        a: Input, raw integer of `fmt`.
+        b: Input, raw integer of `fmt`.
+        out_valid: Output, `product` holds a result.
+        out_ready: Input, the consumer takes the result on this cycle.
+        product: Output, raw integer of `fmt`.
+        fmt: The operands' and result's format.
+    """
+    a1, b1 = fmt.signal(), fmt.signal()
+    full = _signed(2 * fmt.width)
+    valid = [Signal(bool(0)) for _ in range(3)]
+    v1, v2, v3 = valid
+    advance = Signal(bool(0))
+    rounded = fmt.signal()
+    rounding = round_to_format(full, rounded, fmt)
+
+    @always_seq(clk.posedge, reset=rst)
+    def stages():
+        if advance:
+            a1.next = a
+            b1.next = b
+            v1.next = in_valid
+            full.next = a1 * b1
+            v2.next = v1
+            product.next = rounded
+            v3.next = v2
+
+    @always_comb
+    def control():
+        advance.next = out_ready or not v3
+        in_ready.next = out_ready or not v3
+        out_valid.next = v3
+
+    return rounding, stages, control
+
+
+@block
+def fixed_mac(clk, rst, in_valid, in_ready, a, b, first, out_valid, out_ready, total, fmt):
+    """Running ``Σ a * b`` in `fmt`: one result per pair, `first` starts a new sum.
+
+    Each result is the sum since the last pair with `first` set, rounded half up and saturated
+    (`rfc.lib.arith.mac.multiply_accumulate` of that prefix); sums of up to
+    ``2**MAC_GUARD_BITS`` products never wrap.
+
+    Args:
+        clk: Clock.
+        rst: Synchronous reset (a MyHDL ``ResetSignal``).
+        in_valid: Input, `a`, `b` and `first` hold a pair to take.
+        in_ready: Output, the block takes the pair on this cycle when `in_valid` is high.
+        a: Input, raw integer of `fmt`.
+        b: Input, raw integer of `fmt`.
+        first: Input, this pair starts a new sum.
+        out_valid: Output, `total` holds a result.
+        out_ready: Input, the consumer takes the result on this cycle.
+        total: Output, raw integer of `fmt`.
+        fmt: The operands' and result's format.
+    """
+    advance = Signal(bool(0))
+    valid_out = Signal(bool(0))
+    datapath = mac_pipeline(clk, rst, advance, in_valid, a, b, first, valid_out, total, fmt)
+
+    @always_comb
+    def control():
+        advance.next = out_ready or not valid_out
+        in_ready.next = out_ready or not valid_out
+        out_valid.next = valid_out
+
+    return datapath, control
+
+
+@block
+def mac_pipeline(clk, rst, advance, valid_in, a, b, first, valid_out, result, fmt):
+    """The multiply-accumulate datapath without handshakes: it moves when `advance` is high.
+
+    A pair entering on a cycle with `advance` high comes out `MAC_LATENCY` advancing cycles
+    later, with `valid_out` marking cycles that carry a result.
+    """
+    a1, b1 = fmt.signal(), fmt.signal()
+    v1, f1, v2, f2, v3 = (Signal(bool(0)) for _ in range(5))
+    product = _signed(2 * fmt.width)
+    total = _signed(2 * fmt.width + MAC_GUARD_BITS)
+    rounded = fmt.signal()
+    rounding = round_to_format(total, rounded, fmt)
+
+    @always_seq(clk.posedge, reset=rst)
+    def stages():
+        if advance:
+            a1.next = a
+            b1.next = b
+            v1.next = valid_in
+            f1.next = first
+            product.next = a1 * b1
+            v2.next = v1
+            f2.next = f1
+            if v2:
+                if f2:
+                    total.next = product
+                else:
+                    total.next = total + product
+            v3.next = v2
+            result.next = rounded
+            valid_out.next = v3
+
+    return rounding, stages
+
+
+@block
+def round_to_format(wide, narrow, fmt: FixedFormat):
+    """A value with ``2 * fmt.frac_bits`` fraction bits, rounded half up and saturated (comb)."""
+    bits = len(wide) + 1
+    shift = fmt.frac_bits
+    # Constants wider than 31 bits reach VHDL as the initial values of undriven signals.
+    half = Signal(intbv((1 << shift) >> 1, min=0, max=1 << shift))
+    low, high = fmt.signal(fmt.min_raw), fmt.signal(fmt.max_raw)
+
+    @always_comb
+    def round_half_up():
+        v = intbv(0, min=-(1 << (bits - 1)), max=1 << (bits - 1))
+        v[:] = wide + half
+        v[:] = v >> shift
+        if v < low:
+            narrow.next = low
+        elif v > high:
+            narrow.next = high
+        else:
+            narrow.next = v
+
+    return round_half_up

@@ -1,0 +1,261 @@
+"""MyHDL sine/cosine CORDIC blocks, iterative (one rotation per cycle) or pipelined (II = 1).
+
+Both have the same ports, the same latency (`SinCosConfig.latency` cycles from the input
+handshake to `out_valid`) and the bits of `rfc.lib.arith.sincos.sincos`. The iterative block
+takes one input at a time (initiation interval latency + 2: three adders, two barrel shifters);
+the pipelined one takes an input every cycle (three adders per iteration). Outputs stay put
+while `out_valid` is high and `out_ready` low. Wide constants reach VHDL as ROM contents
+(VHDL integers stop at 32 bits).
+"""
+
+from __future__ import annotations
+
+from myhdl import Signal, always_comb, always_seq, block, intbv
+
+from rfc.lib.arith.sincos import SinCosConfig
+
+
+def _signed(bits: int, value: int = 0) -> Signal:
+    return Signal(intbv(value, min=-(1 << (bits - 1)), max=1 << (bits - 1)))
+
+
+@block
+def sincos(
+    clk,
+    rst,
+    in_valid,
+    in_ready,
+    angle,
+    out_valid,
+    out_ready,
+    cos,
+    sin,
+    config: SinCosConfig,
+    pipelined: bool = False,
+):
+    """Cosine and sine of a fixed-point angle, with valid/ready handshakes.
+
+    Args:
+        clk: Clock.
+        rst: Synchronous reset (a MyHDL ``ResetSignal``).
+        in_valid: Input, `angle` holds a value to take.
+        in_ready: Output, the block takes the angle on this cycle when `in_valid` is high.
+        angle: Input, signed raw integer of ``config.angle_format`` (radians in [-8, 8)).
+        out_valid: Output, `cos` and `sin` hold a result.
+        out_ready: Input, the consumer takes the result on this cycle.
+        cos: Output, signed raw integer of ``config.out_format``.
+        sin: Output, signed raw integer of ``config.out_format``.
+        config: Precision and iterations.
+        pipelined: One stage per iteration (a new angle every cycle) instead of one
+            iteration per cycle in a single stage.
+    """
+    if pipelined:
+        return sincos_pipelined(
+            clk, rst, in_valid, in_ready, angle, out_valid, out_ready, cos, sin, config
+        )
+    return sincos_iterative(
+        clk, rst, in_valid, in_ready, angle, out_valid, out_ready, cos, sin, config
+    )
+
+
+@block
+def sincos_iterative(clk, rst, in_valid, in_ready, angle, out_valid, out_ready, cos, sin, config):
+    """One micro-rotation per cycle through variable shifts; ports as `sincos`."""
+    steps = config.steps
+    # The step counter rests at `steps` while idle; that address reads 0.
+    rom = (*config.atan_table, 0)
+    start_rom = (config.start,)
+    xs, ys = _signed(config.xy_width), _signed(config.xy_width)
+    zs = _signed(config.z_width)
+    flip = Signal(bool(0))
+    step = Signal(intbv(steps, min=0, max=steps + 1))
+    full = Signal(bool(0))
+    step_angle = _signed(config.z_width)
+    z_start = _signed(config.z_width)
+    flip_start = Signal(bool(0))
+    reduce = sincos_reduction(angle, z_start, flip_start, config)
+    round_cos = sincos_rounding(xs, flip, cos, config)
+    round_sin = sincos_rounding(ys, flip, sin, config)
+
+    @always_comb
+    def lookup():
+        step_angle.next = rom[step]
+
+    @always_seq(clk.posedge, reset=rst)
+    def iterate():
+        if step != steps:
+            if zs < 0:
+                xs.next = xs + (ys >> step)
+                ys.next = ys - (xs >> step)
+                zs.next = zs + step_angle
+            else:
+                xs.next = xs - (ys >> step)
+                ys.next = ys + (xs >> step)
+                zs.next = zs - step_angle
+            if step == steps - 1:
+                full.next = True
+            step.next = step + 1
+        elif full:
+            if out_ready:
+                full.next = False
+        elif in_valid:
+            xs.next = start_rom[0]
+            ys.next = 0
+            zs.next = z_start
+            flip.next = flip_start
+            step.next = 0
+
+    @always_comb
+    def outputs():
+        in_ready.next = step == steps and not full
+        out_valid.next = full
+
+    return reduce, round_cos, round_sin, lookup, iterate, outputs
+
+
+@block
+def sincos_pipelined(clk, rst, in_valid, in_ready, angle, out_valid, out_ready, cos, sin, config):
+    """A stage per micro-rotation with fixed shifts; ports as `sincos`."""
+    count = config.steps + 1
+    # Stage i holds the vector after i micro-rotations; stage 0 is the reduced input.
+    xs = [_signed(config.xy_width) for _ in range(count)]
+    ys = [_signed(config.xy_width) for _ in range(count)]
+    zs = [_signed(config.z_width) for _ in range(count)]
+    valid = [Signal(bool(0)) for _ in range(count)]
+    flips = [Signal(bool(0)) for _ in range(count)]
+    x_first, y_first, z_first, valid_first, flip_first = xs[0], ys[0], zs[0], valid[0], flips[0]
+    last = count - 1
+    valid_last = valid[last]
+    advance = Signal(bool(0))
+    start_rom = (config.start,)
+    z_start = _signed(config.z_width)
+    flip_start = Signal(bool(0))
+    reduce = sincos_reduction(angle, z_start, flip_start, config)
+    round_cos = sincos_rounding(xs[last], flips[last], cos, config)
+    round_sin = sincos_rounding(ys[last], flips[last], sin, config)
+
+    @always_seq(clk.posedge, reset=rst)
+    def load():
+        if advance:
+            x_first.next = start_rom[0]
+            y_first.next = 0
+            z_first.next = z_start
+            flip_first.next = flip_start
+            valid_first.next = in_valid
+
+    stages = [
+        sincos_stage(
+            clk,
+            rst,
+            advance,
+            i,
+            step,
+            (valid[i], flips[i], xs[i], ys[i], zs[i]),
+            (valid[i + 1], flips[i + 1], xs[i + 1], ys[i + 1], zs[i + 1] if i + 1 < last else None),
+        )
+        for i, step in enumerate(config.atan_table)
+    ]
+
+    @always_comb
+    def outputs():
+        advance.next = out_ready or not valid_last
+        in_ready.next = out_ready or not valid_last
+        out_valid.next = valid_last
+
+    return reduce, round_cos, round_sin, load, stages, outputs
+
+
+@block
+def sincos_stage(clk, rst, advance, shift, step, before, after):
+    """One micro-rotation by ±atan(2**-shift), registered when the pipeline advances.
+
+    The last stage has no `z` output (`after` holds None there): nothing reads it.
+    """
+    valid_in, flip_in, x_in, y_in, z_in = before
+    valid_out, flip_out, x_out, y_out, z_out = after
+    rom = (step,)
+    width = len(z_in)
+
+    @always_seq(clk.posedge, reset=rst)
+    def rotate():
+        if advance:
+            turn = intbv(0, min=-(1 << (width - 1)), max=1 << (width - 1))
+            turn[:] = rom[0]
+            valid_out.next = valid_in
+            flip_out.next = flip_in
+            if z_in < 0:
+                x_out.next = x_in + (y_in >> shift)
+                y_out.next = y_in - (x_in >> shift)
+                z_out.next = z_in + turn
+            else:
+                x_out.next = x_in - (y_in >> shift)
+                y_out.next = y_in + (x_in >> shift)
+                z_out.next = z_in - turn
+
+    @always_seq(clk.posedge, reset=rst)
+    def rotate_last():
+        if advance:
+            valid_out.next = valid_in
+            flip_out.next = flip_in
+            if z_in < 0:
+                x_out.next = x_in + (y_in >> shift)
+                y_out.next = y_in - (x_in >> shift)
+            else:
+                x_out.next = x_in - (y_in >> shift)
+                y_out.next = y_in + (x_in >> shift)
+
+    return rotate_last if z_out is None else rotate
+
+
+@block
+def sincos_reduction(angle, z_start, flip_start, config):
+    """The angle reduced to [-π/2, π/2] with the guard bits, and whether to negate (comb)."""
+    wide = config.z_width + 2
+    pi_rom, two_pi_rom, half_rom = (config.pi,), (config.two_pi,), (config.half_pi,)
+    guard = config.guard
+
+    @always_comb
+    def reduce():
+        pi = intbv(0, min=-(1 << (wide - 1)), max=1 << (wide - 1))
+        two_pi = intbv(0, min=-(1 << (wide - 1)), max=1 << (wide - 1))
+        half = intbv(0, min=-(1 << (wide - 1)), max=1 << (wide - 1))
+        z = intbv(0, min=-(1 << (wide - 1)), max=1 << (wide - 1))
+        pi[:] = pi_rom[0]
+        two_pi[:] = two_pi_rom[0]
+        half[:] = half_rom[0]
+        z[:] = angle
+        z[:] = z << guard
+        if z > pi:
+            z[:] = z - two_pi
+        elif z < -pi:
+            z[:] = z + two_pi
+        flip_start.next = False
+        if z > half:
+            z[:] = z - pi
+            flip_start.next = True
+        elif z < -half:
+            z[:] = z + pi
+            flip_start.next = True
+        z_start.next = z
+
+    return reduce
+
+
+@block
+def sincos_rounding(value, flip, result, config):
+    """A register's value, negated when `flip`, rounded half up from the guard bits (comb)."""
+    wide = config.xy_width + 1
+    guard = config.guard
+    half = 1 << (guard - 1)
+
+    @always_comb
+    def round_half_up():
+        v = intbv(0, min=-(1 << (wide - 1)), max=1 << (wide - 1))
+        if flip:
+            v[:] = -value
+        else:
+            v[:] = value
+        v[:] = v + half
+        result.next = v >> guard
+
+    return round_half_up

@@ -69,7 +69,7 @@ def build(
     from rfc.lower import lower
     from rfc.lower.artifacts import BuildOptions
     from rfc.lower.writer import write_artifacts
-    from rfc.passes.pipeline import BUILD_PIPELINE, pass_names
+    from rfc.passes.pipeline import BUILD_PIPELINE, SOFTWARE_BUILD_PIPELINE, pass_names
 
     wanted = list(dict.fromkeys(dump_ir_after or ()))
     for name in wanted:
@@ -83,7 +83,8 @@ def build(
         if name in wanted:
             sys.stdout.write(f"# IR after {name}\n{format_ir(design)}")
 
-    design = compile_spec(str(spec), after=dump, pipeline=BUILD_PIPELINE)
+    pipeline = SOFTWARE_BUILD_PIPELINE if no_hardware else BUILD_PIPELINE
+    design = compile_spec(str(spec), after=dump, pipeline=pipeline)
     options = BuildOptions(emit_ir=emit_ir, estimate=estimate, hardware=not no_hardware)
     artifacts = lower(design, options, spec.read_text(encoding="utf-8"))
     write_artifacts(artifacts, output, str(output))

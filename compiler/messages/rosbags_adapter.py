@@ -249,14 +249,13 @@ class MessageTypes:
         """Build a rosbags message object from a nested dict of field name → value.
 
         Sub-messages are nested dicts, arrays and sequences plain lists; primitive arrays become
-        NumPy arrays of the dtype rosbags uses.
+        NumPy arrays of the dtype rosbags uses. A field left out takes its default: zero,
+        false, an empty string or sequence.
         """
         cls = self._store.types[canonical]
         kwargs = {}
         for field in self.fields(canonical):
-            if field.name not in tree:  # a sub-message without fields has no leaves
-                tree = {**tree, field.name: [{}] * (field.array_length or 0) or {}}
-            value = tree[field.name]
+            value = tree[field.name] if field.name in tree else _default(field)
             if field.array_length is not None or field.is_sequence:
                 if field.is_message:
                     value = [self.build(field.base, item) for item in value]
@@ -268,6 +267,23 @@ class MessageTypes:
                 value = self.build(field.base, value)
             kwargs[attribute_name(field.name)] = value
         return cls(**kwargs)
+
+
+def _default(field: FieldDef) -> Any:
+    """The value of a field left out of a tree: zero, false, empty; sub-messages likewise."""
+    if field.is_sequence:
+        return []
+    if field.is_message:
+        one: Any = {}
+    elif field.base == "string":
+        one = ""
+    elif field.base == "bool":
+        one = False
+    elif field.base.startswith("float"):
+        one = 0.0
+    else:
+        one = 0
+    return one if field.array_length is None else [one] * field.array_length
 
 
 def _short_name(canonical: str) -> str:

@@ -27,6 +27,8 @@ MODEL_PIPELINE: tuple[Pass, ...] = (
 PIPELINE: tuple[Pass, ...] = (*MODEL_PIPELINE, CheckHardware())
 #: `rfc build`'s pipeline: the scheduler left to the DSE is chosen too (`rfc check` skips it).
 BUILD_PIPELINE: tuple[Pass, ...] = (*PIPELINE, ResolveScheduler())
+#: `rfc build --no-hardware`'s: no logic is made, so its rules are not applied.
+SOFTWARE_BUILD_PIPELINE: tuple[Pass, ...] = (*MODEL_PIPELINE, ResolveScheduler())
 #: The name of the front-end's output, accepted wherever a pass name is (``--dump-ir-after``).
 PARSE = "parse"
 

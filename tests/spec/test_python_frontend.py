@@ -51,10 +51,13 @@ def test_decorator_records_the_block_its_ports_and_reference():
 
 
 def test_decorated_block_still_instantiates_as_a_myhdl_block():
+    from types import SimpleNamespace
+
     from myhdl import ResetSignal, Signal, intbv
 
     clk, reset = Signal(bool(0)), ResetSignal(0, active=1, isasync=False)
-    instance = QuaternionToEuler(clk, reset, Signal(intbv(0)[64:]), Signal(intbv(0)[64:]))
+    q, euler = (SimpleNamespace(x=Signal(intbv(0)[64:])) for _ in range(2))
+    instance = QuaternionToEuler(clk, reset, q, euler)
     assert type(instance).__name__ == "_Block"
 
 

@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 from rfc.ir.text import format_ir
-from rfc.passes.pipeline import run_pipeline
+from rfc.passes.pipeline import MODEL_PIPELINE, run_pipeline
 from rfc.spec import load_spec
 from tests.support.cli import run_rfc
 
@@ -20,8 +20,10 @@ PAIRS = {
 
 
 def texts_after_each_pass(path):
+    """The IR after each pass deriving the model (the image pipeline's logic is refused)."""
     seen = []
-    run_pipeline(load_spec(path), after=lambda name, d: seen.append((name, format_ir(d))))
+    design = load_spec(path)
+    run_pipeline(design, MODEL_PIPELINE, lambda name, d: seen.append((name, format_ir(d))))
     return seen
 
 

@@ -25,13 +25,13 @@ def quat_to_euler(x: float, y: float, z: float, w: float) -> tuple[float, float,
     reference=quat_to_euler,
 )
 @block
-def QuaternionToEuler(clk, reset, q_x, euler_x):  # noqa: N802 (a type name, as in YAML)
-    """Registers q.x into euler.x: a stand-in datapath with the right kind of ports."""
+def QuaternionToEuler(clk, rst, q, euler):  # noqa: N802 (a type name, as in YAML)
+    """Registers q.x into euler.x: a stand-in datapath on interface objects."""
     held = Signal(intbv(0)[64:])
 
-    @always_seq(clk.posedge, reset=reset)
+    @always_seq(clk.posedge, reset=rst)
     def step():
-        held.next = q_x
-        euler_x.next = held
+        held.next = q.x
+        euler.x.next = held
 
     return step

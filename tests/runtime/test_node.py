@@ -5,11 +5,11 @@ from __future__ import annotations
 import socket
 import threading
 
+from rfc.lower.runtime_plan import DesignPlan
 from rfc.runtime.core import QueueConfig, Runtime
 from rfc.runtime.dma_device import FileDma
 from rfc.runtime.loopback import PassThroughLogic, pass_through_routes
 from rfc.runtime.node import NodeCore
-from rfc.runtime.plan import RuntimePlan
 from rfc.runtime.replay import replay
 from tests.runtime.support import compiled, pose_messages
 
@@ -24,7 +24,7 @@ def fake_logic(sock: socket.socket, logic: PassThroughLogic) -> None:
 
 def test_node_core_moves_messages_through_the_dma_devices(tmp_path):
     design = compiled(tmp_path, "pose_mixed.yaml")
-    plan = RuntimePlan(design)
+    plan = DesignPlan(design)
     messages = pose_messages(plan.types, 20)
     expected = replay(Runtime(plan), messages, PassThroughLogic(pass_through_routes(design)))
     ours, theirs = socket.socketpair(socket.AF_UNIX, socket.SOCK_SEQPACKET)
@@ -59,7 +59,7 @@ def test_node_core_moves_messages_through_the_dma_devices(tmp_path):
 
 def test_messages_offered_faster_than_the_dma_overflow_and_are_counted(tmp_path):
     design = compiled(tmp_path, "pose_mixed.yaml")
-    plan = RuntimePlan(design)
+    plan = DesignPlan(design)
     ours, theirs = socket.socketpair(socket.AF_UNIX, socket.SOCK_SEQPACKET)
     core = NodeCore(plan, FileDma(ours.fileno(), ours.fileno(), 1 << 20), lambda _: None)
     for message in pose_messages(plan.types, 15):  # not started: nothing leaves the queue

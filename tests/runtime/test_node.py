@@ -4,7 +4,11 @@ from __future__ import annotations
 
 import socket
 import threading
+import time
 
+import pytest
+
+from rfc.errors import RfcError
 from rfc.lower.runtime_plan import DesignPlan
 from rfc.runtime.core import QueueConfig, Runtime
 from rfc.runtime.dma_device import FileDma
@@ -68,3 +72,32 @@ def test_messages_offered_faster_than_the_dma_overflow_and_are_counted(tmp_path)
     account = core.stop()
     theirs.close()
     assert account.dropped == {("Pose_sub", "overflow"): 5, ("Pose_sub", "unsent"): 10}
+
+
+class SilentLogic:
+    """DMA channels whose logic never takes a transfer (a bitstream that does not answer)."""
+
+    def __init__(self):
+        self.closed = threading.Event()
+
+    def write(self, transfer):
+        self.closed.wait()
+
+    def read(self):
+        self.closed.wait()
+        return b""
+
+    def close(self):
+        self.closed.set()
+
+
+def test_a_logic_that_takes_no_transfer_is_an_error_after_the_answer_timeout(tmp_path):
+    plan = DesignPlan(compiled(tmp_path, "pose_mixed.yaml"))
+    core = NodeCore(plan, SilentLogic(), lambda _: None)
+    core.start()
+    core.on_message("/amcl_pose", pose_messages(plan.types, 1)[0].data)
+    core.check(timeout=0.2)  # just written: not yet late
+    time.sleep(0.3)
+    with pytest.raises(RfcError, match=r"the logic has not taken a PS→PL transfer in 0.2 s"):
+        core.check(timeout=0.2)
+    core.stop()

@@ -26,6 +26,7 @@ from rfc.runtime.account import Account
 from rfc.runtime.core import Published, QueueConfig, QueuePolicy, Runtime
 from rfc.runtime.dma_device import DmaChannels
 from rfc.runtime.errors import RfcError
+from rfc.runtime.layout import Middleware
 from rfc.runtime.plan import RuntimePlan, load_plan
 from rfc.runtime.transports import Device, DeviceOptions, open_transport
 
@@ -62,6 +63,7 @@ class NodeCore:
         self._work = threading.Condition(self._lock)
         self._stopping = False
         self._writing_since: float | None = None
+        self._failure: RfcError | None = None
         self._threads = [
             threading.Thread(target=self._send, name="rfc-mm2s", daemon=True),
             threading.Thread(target=self._receive, name="rfc-s2mm", daemon=True),
@@ -101,11 +103,13 @@ class NodeCore:
             return self.runtime.account
 
     def check(self, timeout: float = ANSWER_TIMEOUT) -> None:
-        """Raise when the logic has not taken a transfer for `timeout` seconds.
+        """Raise when the logic has not taken a transfer for `timeout` seconds, or failed.
 
         Raises:
-            RfcError: The logic does not answer.
+            RfcError: The logic does not answer, or a ROS-SW accelerator fed by it failed.
         """
+        if self._failure is not None:
+            raise self._failure
         since = self._writing_since
         if since is not None and time.monotonic() - since > timeout:
             raise RfcError(
@@ -135,7 +139,11 @@ class NodeCore:
             if not transfer:
                 return
             with self._lock:
-                published = self.runtime.receive(transfer, self.clock(), self.clock())
+                try:
+                    published = self.runtime.receive(transfer, self.clock(), self.clock())
+                except RfcError as error:  # a ROS-SW function failed: `check` reports it
+                    self._failure = error
+                    return
                 if self.runtime.waiting():
                     self._work.notify()
             for message in published:
@@ -184,7 +192,7 @@ def main(plan_path: Path, argv: Sequence[str] | None = None) -> None:
         args, ros_arguments = parse_options(plan, argv)
         if args.depth < 1:
             raise RfcError(f"--depth must be at least 1, not {args.depth}")
-        if plan.middleware.value == "ros1":
+        if plan.middleware is Middleware.ROS1:
             from rfc.runtime.ros1 import spin
         else:
             from rfc.runtime.ros2 import spin

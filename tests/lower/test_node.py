@@ -48,6 +48,7 @@ def test_build_writes_the_node_its_plan_and_the_software_modules(tmp_path):
     )
     assert help_text.returncode == 0, help_text.stderr
     assert "--queue {per-subscriber,shared-fifo}" in help_text.stdout
+    assert "--device {dma,pynq,sim}" in help_text.stdout
 
 
 def test_ros1_projects_get_a_rospy_node_with_md5_sums(tmp_path, examples_dir):

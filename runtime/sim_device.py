@@ -55,7 +55,7 @@ class SimulatedLogic:
                 ended before connecting.
         """
         job = _job(plan)
-        workdir = Path(tempfile.mkdtemp(prefix="rfc-sim-"))
+        workdir = Path(tempfile.mkdtemp(prefix="rfc-node-sim-"))
         address = str(workdir / "logic.sock")
         listener = socket.socket(socket.AF_UNIX, socket.SOCK_SEQPACKET)
         listener.bind(address)

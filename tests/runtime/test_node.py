@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import socket
+import subprocess
+import sys
 import threading
 import time
 
@@ -101,3 +103,28 @@ def test_a_logic_that_takes_no_transfer_is_an_error_after_the_answer_timeout(tmp
     with pytest.raises(RfcError, match=r"the logic has not taken a PS→PL transfer in 0.2 s"):
         core.check(timeout=0.2)
     core.stop()
+
+
+def test_the_node_imports_only_the_runtime_and_its_two_dependencies(tmp_path, examples_dir):
+    """What the `runtime` extra promises: numpy and rosbags, no compiler, no simulator."""
+    from tests.support.cli import run_rfc
+
+    spec = examples_dir / "quaternion_to_euler" / "project.yaml"
+    assert run_rfc("build", spec, "-o", tmp_path / "build", "--no-hardware").returncode == 0
+    plan_file = tmp_path / "build" / "sw" / "quaternion_to_euler_plan.json"
+    script = (
+        "import sys\n"
+        "from rfc.runtime.core import Runtime\n"
+        "from rfc.runtime.plan import load_plan\n"
+        "import rfc.runtime.node, rfc.runtime.ros1, rfc.runtime.ros2, rfc.runtime.transports\n"
+        f"Runtime(load_plan(__import__('pathlib').Path({str(plan_file)!r})))\n"
+        "print(' '.join(sorted({m.split('.')[0] for m in sys.modules} | "
+        "{m for m in sys.modules if m.startswith('rfc.')})))\n"
+    )
+    result = subprocess.run(
+        [sys.executable, "-c", script], capture_output=True, text=True, check=True
+    )
+    loaded = set(result.stdout.split())
+    assert {m for m in loaded if m.startswith("rfc.") and not m.startswith("rfc.runtime")} == set()
+    assert not loaded & {"myhdl", "cocotb", "typer", "numba", "matplotlib", "rich", "rclpy"}
+    assert {"numpy", "rosbags"} <= loaded

@@ -1,7 +1,8 @@
 """The simulator's end of the ``sim`` transport: datagrams in, AXI-Stream transfers out.
 
 Runs inside cocotb (started by `rfc.runtime.sim_device`): every datagram from the node is one
-PS→PL transfer on ``s_axis_mm2s``; every PL→PS transfer from ``m_axis_s2mm`` goes back as one
+PS→PL transfer on ``s_axis_mm2s``, acknowledged with `rfc.runtime.sim_device.TAKEN` once the
+logic has taken its last beat; every PL→PS transfer from ``m_axis_s2mm`` goes back as one
 datagram. The clock runs while anything moves; once the logic has been quiet a while, the
 bridge waits for the node in wall time (the logic is idle, nothing is lost) between short runs.
 The test ends when the node closes the socket.
@@ -17,7 +18,9 @@ import socket
 import cocotb
 from cocotb.clock import Clock
 from cocotb.triggers import ClockCycles
-from cocotbext.axi import AxiStreamBus, AxiStreamSink, AxiStreamSource
+from cocotbext.axi import AxiStreamBus, AxiStreamFrame, AxiStreamSink, AxiStreamSource
+
+from rfc.runtime.sim_device import TAKEN
 
 #: Cycles simulated between two looks at the socket.
 STEP_CYCLES = 16
@@ -60,7 +63,8 @@ async def bridge(dut: object) -> None:
             if not transfer:
                 connection.close()
                 return
-            await source.send(transfer)
+            taken = AxiStreamFrame(transfer, tx_complete=lambda _: connection.send(TAKEN))
+            await source.send(taken)
             moved, wait = True, 0
         while not sink.empty():
             connection.send(bytes(sink.recv_nowait().tdata))

@@ -4,7 +4,11 @@
 ``rfc build`` wrote (``hw/files.txt``, named by the plan relative to it), with
 `rfc.runtime.sim_bridge` driving the logic's two DMA streams; the node and the simulation
 exchange one transfer per datagram over a Unix ``SOCK_SEQPACKET`` socket, so the node's loop
-is the one that runs on the board. It needs GHDL and cocotb, not the compiler.
+is the one that runs on the board. As with the DMA, a write returns once the logic has taken
+the transfer's last beat: the bridge then sends `TAKEN`, a one-byte datagram (every transfer is
+at least a chunk header), which the reading side hands to the waiting writer. A logic that does
+not take a transfer thus blocks the write, as a bitstream that does not answer blocks the DMA.
+It needs GHDL and cocotb, not the compiler.
 """
 
 from __future__ import annotations
@@ -16,8 +20,9 @@ import socket
 import subprocess
 import sys
 import tempfile
+import threading
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from rfc.runtime.dma_device import FileDma
@@ -28,6 +33,8 @@ from rfc.runtime.plan import RuntimePlan
 START_TIMEOUT = 600.0
 #: VHDL standard of the generated logic.
 VHDL_STANDARD = "08"
+#: The datagram that says the logic took a whole PS→PL transfer.
+TAKEN = b"\x06"
 
 
 @dataclass
@@ -45,6 +52,7 @@ class SimulatedLogic:
     connection: socket.socket
     process: subprocess.Popen
     workdir: Path
+    taken: threading.Semaphore = field(default_factory=lambda: threading.Semaphore(0))
 
     @classmethod
     def start(cls, plan: RuntimePlan, timeout: float = START_TIMEOUT) -> SimulatedLogic:
@@ -94,15 +102,19 @@ class SimulatedLogic:
         )
 
     def write(self, transfer: bytes) -> None:
-        """Send one PS→PL transfer to the simulated logic."""
+        """Send one PS→PL transfer; return once the logic took its last beat (or on close)."""
         self.channel.write(transfer)
+        self.taken.acquire()
 
     def read(self) -> bytes:
-        """Receive one PL→PS transfer (b"" once closed)."""
-        return self.channel.read()
+        """Receive one PL→PS transfer (b"" once closed); acknowledgements go to the writer."""
+        while (transfer := self.channel.read()) == TAKEN:
+            self.taken.release()
+        return transfer
 
     def close(self) -> None:
-        """End the simulation and remove its files."""
+        """End the simulation and remove its files (a blocked write returns)."""
+        self.taken.release()
         with contextlib.suppress(OSError):
             self.connection.shutdown(socket.SHUT_RDWR)
         try:

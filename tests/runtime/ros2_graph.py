@@ -6,6 +6,7 @@ killed, with whatever it started.
 
 from __future__ import annotations
 
+import contextlib
 import itertools
 import json
 import os
@@ -25,7 +26,6 @@ def graph_environment() -> dict[str, str]:
     return {
         **os.environ,
         "ROS_DOMAIN_ID": str(next(_DOMAINS)),
-        "ROS_LOCALHOST_ONLY": "1",
         "ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST",
         "RMW_IMPLEMENTATION": "rmw_fastrtps_cpp",
     }
@@ -39,6 +39,7 @@ def exchange(
     *,
     interpreter: Sequence[str] = (sys.executable,),
     env: dict[str, str] | None = None,
+    exits: bool = False,
 ) -> list[bytes | None]:
     """Start the node, let a separate rclpy process talk to it, and return the answers.
 
@@ -49,6 +50,8 @@ def exchange(
         workdir: Where the job and the node's log go.
         interpreter: The command that runs the node's Python.
         env: The node's environment (default: the graph's).
+        exits: The node is to end by itself (its exit status goes to ``node.status`` in
+            `workdir`); else it is interrupted once the peer is done.
     """
     graph = graph_environment()
     job_file = workdir / "peer.json"
@@ -71,11 +74,16 @@ def exchange(
             check=False,
         )
     finally:
-        os.killpg(process.pid, signal.SIGINT)
+        if exits:
+            with contextlib.suppress(subprocess.TimeoutExpired):
+                (workdir / "node.status").write_text(str(process.wait(30)))
+        with contextlib.suppress(ProcessLookupError):  # the node and what it started
+            os.killpg(process.pid, signal.SIGINT)
         try:
             process.wait(15)
         except subprocess.TimeoutExpired:
-            os.killpg(process.pid, signal.SIGKILL)
+            with contextlib.suppress(ProcessLookupError):
+                os.killpg(process.pid, signal.SIGKILL)
             process.wait()
         log.close()
     assert peer.returncode == 0, peer.stderr + (workdir / "node.log").read_text()

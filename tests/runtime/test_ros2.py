@@ -147,3 +147,51 @@ def test_a_mixed_hardware_and_ros_sw_node_answers_as_its_references(tmp_path):
         # DDS may round a frame up to a multiple of 4 bytes
         assert answer[: len(expected)] == expected, index
         assert len(answer) - len(expected) < 4, index
+
+
+DEAF_TOP = """\
+library ieee;
+use ieee.std_logic_1164.all;
+
+-- The build's top level with a logic that never takes a PS-to-PL beat.
+entity quaternion_to_euler_pl is
+  port (
+    aclk, aresetn : in std_logic;
+    s_axis_mm2s_tdata : in std_logic_vector(63 downto 0);
+    s_axis_mm2s_tkeep : in std_logic_vector(7 downto 0);
+    s_axis_mm2s_tvalid, s_axis_mm2s_tlast : in std_logic;
+    s_axis_mm2s_tready : out std_logic;
+    m_axis_s2mm_tdata : out std_logic_vector(63 downto 0);
+    m_axis_s2mm_tkeep : out std_logic_vector(7 downto 0);
+    m_axis_s2mm_tvalid, m_axis_s2mm_tlast : out std_logic;
+    m_axis_s2mm_tready : in std_logic
+  );
+end entity;
+
+architecture deaf of quaternion_to_euler_pl is
+begin
+  s_axis_mm2s_tready <= '0';
+  m_axis_s2mm_tdata <= (others => '0');
+  m_axis_s2mm_tkeep <= (others => '0');
+  m_axis_s2mm_tvalid <= '0';
+  m_axis_s2mm_tlast <= '0';
+end architecture;
+"""
+
+
+def test_a_logic_that_does_not_answer_ends_the_node_with_one_error(quaternion_build, tmp_path):
+    deployed = tmp_path / "deployed"
+    shutil.copytree(quaternion_build / "sw", deployed / "sw")
+    (deployed / "hw").mkdir()
+    (deployed / "hw" / "deaf.vhd").write_text(DEAF_TOP)
+    (deployed / "hw" / "files.txt").write_text("deaf.vhd\n")
+    job = {**quaternion_job(orientations(1)), "timeout": 30}
+    node = deployed / "sw" / "quaternion_to_euler_node.py"
+    answers = exchange(
+        node, ["--device", "sim", "--answer-timeout", "2"], job, tmp_path, exits=True
+    )
+    assert answers == [None]
+    assert (tmp_path / "node.status").read_text() == "1"
+    log = (tmp_path / "node.log").read_text()
+    assert "rfc node: the logic has not taken a PS→PL transfer in 2 s" in log
+    assert "Traceback" not in log

@@ -3,8 +3,9 @@
 Usage: python ros2_peer.py JOB.json, where the job names the input topic and type, the
 messages to publish (hex of their serialized bytes), the output topic and type and a time
 limit. It waits until the node under test has subscribed and published, then sends one message
-at a time and waits for its answer before the next, so that outputs pair with inputs one by
-one. Prints a JSON list of the answers (hex; null where none came in time).
+at a time and waits for its answer before the next (not once the node has left the graph), so
+that outputs pair with inputs one by one. Prints a JSON list of the answers (hex; null where
+none came in time).
 """
 
 import importlib
@@ -36,7 +37,8 @@ def main(job):
     answers = []
     for data in job["messages"]:
         publisher.publish(bytes.fromhex(data))
-        while time.monotonic() < deadline and not received:
+        # until the answer comes, the time is up, or the node has left the graph
+        while time.monotonic() < deadline and not received and node.count_publishers(job["output"]):
             rclpy.spin_once(node, timeout_sec=0.05)
         answers.append(received.pop(0).hex() if received else None)
     node.destroy_node()

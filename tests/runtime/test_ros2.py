@@ -124,6 +124,7 @@ def test_the_node_runs_with_the_compiler_deleted(quaternion_build, tmp_path):
     assert "Traceback" not in (tmp_path / "node.log").read_text()
 
 
+@pytest.mark.slow
 def test_a_mixed_hardware_and_ros_sw_node_answers_as_its_references(tmp_path):
     spec = system_copy(tmp_path, "pose_mixed.yaml")
     out = tmp_path / "build"

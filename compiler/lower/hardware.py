@@ -62,10 +62,8 @@ def _vhdl(system: SystemHardware) -> Iterable[Artifact]:
     names = [f.name for f in system.files]
     if len(set(names)) != len(names):
         twice = next(n for n in names if names.count(n) > 1)
-        raise RfcError(
-            f"two VHDL files of the logic are both called {twice}",
-            hint="rename one of the accelerator's VHDL sources",
-        )
+        raise RfcError(f"two VHDL files of the logic are both called {twice}",
+                       hint="rename one of the accelerator's VHDL sources")  # fmt: skip
     for path in system.files:
         kind = "top-level VHDL" if path.stem == system.top else "VHDL"
         yield Artifact(f"{HW}/{path.name}", kind, path.read_text(encoding="utf-8"))

@@ -17,9 +17,9 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 from enum import StrEnum
 
-from rfc.errors import RfcError
-from rfc.messages.codec import FrameError, decode
 from rfc.runtime.account import Account
+from rfc.runtime.codec import FrameError, decode
+from rfc.runtime.errors import RfcError
 from rfc.runtime.plan import Route, RuntimePlan, ToLogic, ToSoftware, ToTopic
 from rfc.runtime.protocol import Chunk, ProtocolError, Reassembler, message_chunk
 from rfc.runtime.queues import Overflow
@@ -197,7 +197,7 @@ class Runtime:
             values = decode(layout, data)
         except FrameError:
             return "malformed"
-        return None if self.plan.design.project.maxima.beyond(layout, values) is None else "maximum"
+        return None if self.plan.maxima.beyond(layout, values) is None else "maximum"
 
     def _publish(self, route: ToTopic, data: bytes, stamp: int, out: list[Published]) -> None:
         try:
@@ -211,10 +211,9 @@ class Runtime:
     def _run_software(
         self, route: ToSoftware, data: bytes, stamp: int, now: int, out: list[Published]
     ) -> None:
-        types = self.plan.types
         try:
-            message = types.deserialize(route.shaper.shape(data), route.message)
-        except (FrameError, RfcError):
+            message = self.plan.messages.deserialize(route.shaper.shape(data), route.message)
+        except FrameError:
             self.account.drop(route.name, "malformed")
             return
         accelerator = self.software[route.block]
@@ -235,7 +234,7 @@ class Runtime:
 
     def _serialize(self, block: str, message: object, message_type: str) -> bytes:
         try:
-            return self.plan.types.serialize(message, message_type)
+            return self.plan.messages.serialize(message, message_type)
         except Exception as exc:  # rosbags refused what the user's function built
             raise RfcError(
                 f"ROS-SW accelerator '{block}' returned a message rosbags cannot serialize "

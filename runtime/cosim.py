@@ -32,10 +32,10 @@ from cocotb.triggers import ClockCycles, Event, Timer
 from cocotbext.axi import AxiStreamBus, AxiStreamSink, AxiStreamSource
 
 from rfc.driver import compile_spec
+from rfc.lower.runtime_plan import DesignPlan
 from rfc.messages.rosbags_adapter import message_types, read_bag
 from rfc.runtime.arrivals import IDLE_FRACTION, ArrivalClock
 from rfc.runtime.core import Published, QueueConfig, QueuePolicy, Runtime
-from rfc.runtime.plan import RuntimePlan
 from rfc.runtime.protocol import Chunk
 from rfc.runtime.records import write_records
 from rfc.runtime.stall import StallError, StallWatch, largest_output, pending_work
@@ -167,7 +167,7 @@ async def replay_through_logic(dut: object) -> None:
     job = json.loads(Path(os.environ["RFC_SIM_JOB"]).read_text())
     design = compile_spec(job["spec"])
     queues = QueueConfig(QueuePolicy(job["policy"]), job["depth"])
-    replay = _Replay(dut, job, Runtime(RuntimePlan(design), queues))
+    replay = _Replay(dut, job, Runtime(DesignPlan(design), queues))
     cocotb.start_soon(Clock(dut.aclk, replay.period_ns, unit="ns").start())
     dut.aresetn.value = 0
     await ClockCycles(dut.aclk, 4)

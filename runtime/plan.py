@@ -1,27 +1,33 @@
-"""The processor's view of a system: where every message goes, derived from the holistic model.
+"""The processor's view of a system, as data: where every message goes.
 
 Messages enter from ROS topics (the declared subscribers) and from the logic (PL→PS chunks by
 publisher id); they leave to ROS topics (the declared publishers), to the logic (PS→PL chunks by
-subscriber id) and to ROS-SW accelerators. A `Route` is one such destination; the plan lists
-the routes of every source, using the placement of `rfc.ir.infrastructure`: a subscriber in the
-logic sends its messages there once (the logic fans out), a crossing converter carries a
-connection between a hardware and a software accelerator.
+subscriber id) and to ROS-SW accelerators. A `Route` is one such destination. The plan is read
+from a JSON document that ``rfc build`` derives from the holistic model (``sw/<node>_plan.json``,
+written by `rfc.lower.runtime_plan`): ids, routes, message layouts and definitions, the
+maxima of the logic, the ROS-SW functions' modules. Nothing here needs the compiler, so the
+node ships without it.
 """
 
 from __future__ import annotations
 
+import importlib.util
+import json
+import sys
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from pathlib import Path
+from typing import Any
 
-from rfc.ir.model import BlockKind, Connection, Design
-from rfc.messages.layout import flatten
-from rfc.passes.base import types_of
+from rfc.runtime.errors import RfcError
+from rfc.runtime.layout import Layout, Middleware, layout_from_json
+from rfc.runtime.limits import Limits, limits_from_json
+from rfc.runtime.messages import MessageObjects
 from rfc.runtime.shaping import Shaper
-from rfc.runtime.software import SoftwareAccelerator, load_function
+from rfc.runtime.software import Function, SoftwareAccelerator
 
-if TYPE_CHECKING:
-    from rfc.ir.infrastructure import Converter
-    from rfc.messages.rosbags_adapter import MessageTypes
+#: Version of the plan document this runtime reads.
+PLAN_FORMAT = 1
 
 
 @dataclass(frozen=True)
@@ -80,12 +86,53 @@ class TopicOutput:
     message: str
 
 
+@dataclass(frozen=True)
+class LogicInput:
+    """A subscriber converter in the logic: its id and the layout it accepts."""
+
+    id: int
+    block: str
+    message: str
+    layout: Layout
+
+
+@dataclass(frozen=True)
+class SoftwareBlock:
+    """A ROS-SW accelerator block: its ports and the function it runs (module file, name)."""
+
+    block: str
+    module: str
+    function: str
+    inputs: tuple[str, ...]
+    outputs: tuple[str, ...]
+    output_types: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class LogicFiles:
+    """The build's logic, for the simulated transport: file list, top entity, bus width."""
+
+    files: str
+    top: str
+    bus_width: int
+    clock_mhz: float
+
+
 class RuntimePlan:
-    """Routes of every message source of a design (stage DERIVED).
+    """Routes of every message source of a system, read from its plan document.
+
+    Args:
+        document: The plan (`rfc.lower.runtime_plan.plan_document`).
+        base: The folder relative paths of the document (ROS-SW modules, the logic's file
+            list) start from: the plan file's folder.
 
     Attributes:
-        design: The holistic model.
-        types: Its message definitions (for (de)serializing at software accelerators).
+        document: The plan as read.
+        project: The project's name; ``node_name`` its ROS node's.
+        middleware: ROS 1 or ROS 2.
+        messages: (De)serialization of the plan's message types (for ROS-SW accelerators).
+        maxima: Longest strings and sequences the logic accepts.
+        max_transfer: Bytes of the largest PL→PS transfer (header included).
         inputs: The declared subscribers, in declaration order.
         outputs: The declared publishers, in declaration order.
         logic_inputs: The subscriber converters in the logic, by id.
@@ -93,105 +140,144 @@ class RuntimePlan:
         software_outputs: Where each output port of each ROS-SW block sends its messages.
         subscriber_names: Name of each subscriber id (for the account).
         publisher_names: Name of each publisher id.
+        logic: The logic's files, when the build wrote them.
 
     Raises:
-        RfcError: A ROS-SW accelerator's function cannot be found.
+        RfcError: The document is of another format version.
     """
 
-    def __init__(self, design: Design) -> None:
-        infrastructure = design.infrastructure
-        assert infrastructure is not None, "plan a design at stage DERIVED"
-        self.design = design
-        self.types: MessageTypes = types_of(design.project)
-        self.logic_inputs: tuple[Converter, ...] = infrastructure.subscribers
-        self.subscriber_names = {c.id: c.block for c in infrastructure.subscribers}
-        self.publisher_names = {c.id: c.block for c in infrastructure.publishers}
-        self._software = set(infrastructure.software)
-        self._crossing_subscribers = {
-            c.crossing.hardware: c for c in infrastructure.subscribers if c.crossing is not None
-        }
-        self._logic_subscribers = {
-            c.block: c for c in infrastructure.subscribers if c.crossing is None
-        }
+    def __init__(self, document: dict[str, Any], base: Path | None = None) -> None:
+        if document.get("format") != PLAN_FORMAT:
+            raise RfcError(
+                f"the runtime plan is of format {document.get('format')}, this runtime reads "
+                f"format {PLAN_FORMAT}",
+                hint="rebuild the system with the rfc this runtime comes from",
+            )
+        self.document = document
+        self.base = base or Path.cwd()
+        self.project: str = document["project"]
+        self.node_name: str = document["node_name"]
+        self.middleware = Middleware(document["middleware"])
+        self.messages = MessageObjects(self.middleware, document["messages"])
+        self.maxima: Limits = limits_from_json(document["maxima"])
+        self.max_transfer: int = document["max_transfer"]
+        self.logic_inputs = tuple(
+            LogicInput(s["id"], s["block"], s["message"], layout_from_json(s["layout"]))
+            for s in document["subscribers"]
+        )
+        self.subscriber_names = {s.id: s.block for s in self.logic_inputs}
+        self.publisher_names = {p["id"]: p["block"] for p in document["publishers"]}
         self.inputs = tuple(
-            TopicInput(b.name, b.topic or "", b.message or "", self._subscriber_routes(b.name))
-            for b in design.blocks_of(BlockKind.SUBSCRIBER)
+            TopicInput(i["block"], i["topic"], i["message"], _routes(i["routes"]))
+            for i in document["inputs"]
         )
         self.outputs = tuple(
-            TopicOutput(b.name, b.topic or "", b.message or "")
-            for b in design.blocks_of(BlockKind.PUBLISHER)
+            TopicOutput(o["block"], o["topic"], o["message"]) for o in document["outputs"]
         )
         self.logic_outputs: dict[int, tuple[Route, ...]] = {
-            c.id: self._publisher_routes(c) for c in infrastructure.publishers
+            p["id"]: _routes(p["routes"]) for p in document["publishers"]
+        }
+        self.software_blocks = {
+            s["block"]: SoftwareBlock(
+                s["block"],
+                s["module"],
+                s["function"],
+                tuple(s["inputs"]),
+                tuple(o["name"] for o in s["outputs"]),
+                tuple(o["message"] for o in s["outputs"]),
+            )
+            for s in document["software"]
         }
         self.software_outputs: dict[str, tuple[tuple[Route, ...], ...]] = {
-            name: tuple(self._routes_from(name, port.name) for port in design.block(name).outputs)
-            for name in infrastructure.software
+            s["block"]: tuple(_routes(o["routes"]) for o in s["outputs"])
+            for s in document["software"]
         }
+        logic = document.get("logic")
+        self.logic = None if logic is None else LogicFiles(**logic)
 
     def software_accelerators(self) -> dict[str, SoftwareAccelerator]:
-        """Fresh instances of the ROS-SW accelerators (their input slots empty)."""
-        accelerators = {}
-        for name in self._software:
-            block = self.design.block(name)
-            kind = self.design.accelerator(block.accelerator or "")
-            accelerators[name] = SoftwareAccelerator(block, kind, load_function(kind))
-        return accelerators
+        """Fresh instances of the ROS-SW accelerators (their input slots empty).
+
+        Raises:
+            RfcError: A function's module is missing, fails to import, or lacks the function.
+        """
+        return {
+            name: SoftwareAccelerator(
+                name, block.inputs, block.outputs, block.output_types, self.function_of(name)
+            )
+            for name, block in self.software_blocks.items()
+        }
+
+    def function_of(self, block: str) -> Function:
+        """The function a ROS-SW block runs, imported from its module beside the plan."""
+        spec = self.software_blocks[block]
+        return function_in_file(self.base / spec.module, spec.function, block)
 
     @property
     def has_logic(self) -> bool:
         """Whether any part of the system is in the logic."""
         return bool(self.logic_inputs or self.logic_outputs)
 
-    def _subscriber_routes(self, name: str) -> tuple[Route, ...]:
-        routes: list[Route] = []
-        converter = self._logic_subscribers.get(name)
-        if converter is not None:
-            routes.append(ToLogic(converter.id, converter.block))
-        routes.extend(self._routes_from(name, None, software_only=True))
-        return tuple(routes)
 
-    def _publisher_routes(self, converter: Converter) -> tuple[Route, ...]:
-        if converter.crossing is None:
-            block = self.design.block(converter.block)
-            layout = flatten(self.types, converter.message)  # the logic already shaped it
-            return (ToTopic(block.name, block.topic or "", converter.message, Shaper(layout)),)
-        routes: list[Route] = []
-        for target in converter.crossing.software:
-            block, _, port = target.partition(".")
-            routes.append(self._to_software(block, port))
-        return tuple(routes)
+def load_plan(path: Path) -> RuntimePlan:
+    """Read a plan file written by ``rfc build`` (relative paths start beside it).
 
-    def _routes_from(
-        self, block: str, port: str | None, *, software_only: bool = False
-    ) -> tuple[Route, ...]:
-        return tuple(
-            self._route(connection)
-            for connection in self.design.connections
-            if connection.source.block == block
-            and (port is None or connection.source.port == port)
-            and (not software_only or connection.destination.block in self._software)
-        )
+    Raises:
+        RfcError: The file cannot be read or is not a plan.
+    """
+    try:
+        document = json.loads(path.read_text())
+    except (OSError, ValueError) as exc:
+        raise RfcError(
+            f"cannot read the runtime plan '{path}': {exc}",
+            hint="run the node from its build's sw/ folder, as rfc build wrote it",
+        ) from None
+    return RuntimePlan(document, path.parent)
 
-    def _route(self, connection: Connection) -> Route:
-        destination = self.design.block(connection.destination.block)
-        port = connection.destination.port or ""
-        if destination.kind is BlockKind.PUBLISHER:
-            layout = destination.port(port).layout
-            assert layout is not None
-            return ToTopic(
-                destination.name, destination.topic or "", layout.type_name, Shaper(layout)
+
+def function_in_file(path: Path, name: str, block: str) -> Function:
+    """Import `path` as a module and return its function `name` (for ROS-SW block `block`).
+
+    Raises:
+        RfcError: The file is missing, fails to import, or defines no such callable.
+    """
+    module_name = f"_rfc_sw_{abs(hash(str(path.resolve())))}"
+    module = sys.modules.get(module_name)
+    if module is None:
+        spec = importlib.util.spec_from_file_location(module_name, path)
+        if spec is None or spec.loader is None or not path.is_file():
+            raise RfcError(
+                f"ROS-SW accelerator '{block}' runs '{path.name}', which is not at {path}",
+                hint="keep the modules rfc build copied beside the plan",
             )
-        if destination.name in self._software:
-            return self._to_software(destination.name, port)
-        converter = self._crossing_subscribers[f"{destination.name}.{port}"]
-        return ToLogic(converter.id, converter.block)
+        module = importlib.util.module_from_spec(spec)
+        sys.path.insert(0, str(path.resolve().parent))
+        try:
+            spec.loader.exec_module(module)
+        except Exception as exc:  # the user's module failed to import: report it
+            raise RfcError(
+                f"importing '{path.name}' for ROS-SW accelerator '{block}' raised "
+                f"{type(exc).__name__}: {exc}",
+                hint="install what the module imports on this machine",
+            ) from None
+        sys.modules[module_name] = module
+    function: Callable[..., Any] | None = getattr(module, name, None)
+    if not callable(function):
+        raise RfcError(f"'{path.name}' defines no function '{name}' for ROS-SW '{block}'")
+    return function
 
-    def _to_software(self, block_name: str, port_name: str) -> ToSoftware:
-        block = self.design.block(block_name)
-        inputs = [p.name for p in block.inputs]
-        port = block.port(port_name)
-        assert port.layout is not None
-        return ToSoftware(
-            block_name, inputs.index(port_name), port_name, port.message, Shaper(port.layout)
-        )
+
+def _routes(documents: list[dict[str, Any]]) -> tuple[Route, ...]:
+    return tuple(_route(d) for d in documents)
+
+
+def _route(document: dict[str, Any]) -> Route:
+    kind = document["to"]
+    if kind == "logic":
+        return ToLogic(document["subscriber"], document["block"])
+    shaper = Shaper(layout_from_json(document["layout"]))
+    if kind == "topic":
+        return ToTopic(document["publisher"], document["topic"], document["message"], shaper)
+    return ToSoftware(
+        document["block"], document["port"], document["port_name"], document["message"], shaper
+    )

@@ -1,48 +1,70 @@
 """The rclpy side of the generated node: subscriptions and publishers of serialized messages.
 
-Only this module imports rclpy, and only when the node runs: rclpy exists on the target (a
-Zynq running ROS 2), not where rfc generates and tests the node. Subscriptions take raw CDR
-bytes (``raw=True``) and publishers publish bytes, so messages cross the node without being
-deserialized unless a ROS-SW accelerator needs them.
+Only this module imports rclpy, and only when the node runs. Subscriptions take raw CDR bytes
+(``raw=True``) and publishers publish bytes, so messages cross the node without being
+deserialized unless a ROS-SW accelerator needs them. Message classes come from the ROS 2
+packages of the types (``geometry_msgs.msg``), which the node's ROS installation provides.
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import argparse
+import importlib
+from collections.abc import Callable, Sequence
 from typing import Any
 
 from rfc.runtime.core import Published, QueueConfig
 from rfc.runtime.dma_device import DmaChannels
+from rfc.runtime.errors import RfcError
 from rfc.runtime.node import NodeCore
 from rfc.runtime.plan import RuntimePlan
+
+#: Seconds between two checks that the logic answers.
+CHECK_PERIOD = 0.5
+
+
+def message_class(canonical: str) -> Any:
+    """The rclpy message class of ``pkg/msg/Name``.
+
+    Raises:
+        RfcError: ROS 2 has no Python package for the type here.
+    """
+    package, _, name = canonical.rpartition("/")
+    try:
+        return getattr(importlib.import_module(package.replace("/", ".")), name)
+    except (ImportError, AttributeError):
+        raise RfcError(
+            f"this ROS 2 installation has no Python message class for {canonical}",
+            hint=f"install or source the package that defines it ({package.split('/')[0]})",
+        ) from None
 
 
 def spin(
     plan: RuntimePlan,
-    dma: DmaChannels,
+    open_dma: Callable[[], DmaChannels],
     queues: QueueConfig,
-    config: dict[str, Any],
+    args: argparse.Namespace,
     ros_arguments: Sequence[str],
 ) -> None:
     """Create the node, run it until interrupted, and log its account.
 
     Raises:
-        SystemExit: rclpy is not installed (ROS 2 not sourced).
+        RfcError: rclpy is not installed, a message class is missing, or the logic does not
+            answer.
     """
     try:
         import rclpy
-        from rosidl_runtime_py.utilities import get_message
     except ImportError as exc:
-        dma.close()
-        raise SystemExit(
-            f"rfc node: cannot import ROS 2's Python client ({exc.name}); source a ROS 2 "
-            "installation (setup.bash) first"
+        raise RfcError(
+            f"cannot import ROS 2's Python client ({exc.name})",
+            hint="source a ROS 2 installation (setup.bash), or pip install 'rfc[ros2]'",
         ) from None
-
+    classes = {i.message: message_class(i.message) for i in (*plan.inputs, *plan.outputs)}
+    dma = open_dma()
     rclpy.init(args=list(ros_arguments))
-    node = rclpy.create_node(config["node_name"])
+    node = rclpy.create_node(plan.node_name)
     publishers = {
-        output.topic: node.create_publisher(get_message(output.message), output.topic, 10)
+        output.topic: node.create_publisher(classes[output.message], output.topic, queues.depth)
         for output in plan.outputs
     }
 
@@ -52,12 +74,13 @@ def spin(
     core = NodeCore(plan, dma, publish, queues, clock=lambda: node.get_clock().now().nanoseconds)
     for topic_input in plan.inputs:
         node.create_subscription(
-            get_message(topic_input.message),
+            classes[topic_input.message],
             topic_input.topic,
             lambda data, topic=topic_input.topic: core.on_message(topic, data),
-            config["queues"]["depth"],
+            queues.depth,
             raw=True,
         )
+    node.create_timer(CHECK_PERIOD, lambda: core.check(args.answer_timeout))
     core.start()
     try:
         rclpy.spin(node)

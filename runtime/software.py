@@ -6,10 +6,7 @@ port, a message object or None (no message this time); for several, a tuple with
 output port in declaration order (None where it sends nothing), or a dict of port name to
 message.
 
-Which function: the accelerator's Python reference when it names one (so that a hardware
-accelerator switched to ROS-SW runs its reference model, with nothing else changed in the
-spec), else ``top`` in its Python source, else a function named like the accelerator type in
-its Python source.
+Which function is decided at build time (`rfc.lower.runtime_plan`); the plan names it.
 
 An accelerator with several inputs fires when every input has received a message since it last
 fired, on the newest message of each; a message replaced by a newer one before that is counted
@@ -21,52 +18,34 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 from typing import Any
 
-from rfc.errors import RfcError
-from rfc.ir.model import AcceleratorType, Block
-from rfc.spec.python_sources import function_in
-
-_ROLE = "ROS-SW accelerator"
+from rfc.runtime.errors import RfcError
 
 Function = Callable[..., Any]
-
-
-def load_function(accelerator: AcceleratorType) -> Function:
-    """Find the Python function a ROS-SW accelerator runs.
-
-    Raises:
-        RfcError: No Python source or reference names a function, or it does not exist.
-    """
-    if accelerator.reference_function is not None:
-        return accelerator.reference_function
-    if accelerator.reference is not None:
-        return function_in(
-            accelerator.reference.file, accelerator.reference.name, accelerator, _ROLE
-        )
-    python = next((p for p in accelerator.sources if p.suffix == ".py"), None)
-    if python is None:
-        raise RfcError(
-            f"accelerator '{accelerator.name}' runs as ROS-SW but has neither a Python "
-            "reference nor a Python source to run",
-            location=accelerator.location,
-            hint="name its Python model with 'reference: file.py:function'",
-        )
-    return function_in(python, accelerator.top or accelerator.name, accelerator, _ROLE)
 
 
 class SoftwareAccelerator:
     """One ROS-SW accelerator block: its input slots and its function.
 
     Args:
-        block: The accelerator block.
-        accelerator: Its type.
-        function: What it runs (see `load_function`).
+        name: The block's name.
+        inputs: Its input ports' names, in declaration order.
+        outputs: Its output ports' names, in declaration order.
+        output_types: The message type of each output port.
+        function: What it runs.
     """
 
-    def __init__(self, block: Block, accelerator: AcceleratorType, function: Function) -> None:
-        self.name = block.name
-        self.inputs = tuple(port.name for port in block.inputs)
-        self.outputs = tuple(port.name for port in block.outputs)
-        self.output_types = tuple(port.message for port in block.outputs)
+    def __init__(
+        self,
+        name: str,
+        inputs: tuple[str, ...],
+        outputs: tuple[str, ...],
+        output_types: tuple[str, ...],
+        function: Function,
+    ) -> None:
+        self.name = name
+        self.inputs = inputs
+        self.outputs = outputs
+        self.output_types = output_types
         self.function = function
         self._slots: list[Any] = [None] * len(self.inputs)
         self.calls = 0

@@ -14,9 +14,8 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-from rfc.errors import RfcError
-from rfc.ir.infrastructure import CHUNK_HEADER_BYTES
 from rfc.runtime.core import Runtime
+from rfc.runtime.errors import RfcError
 from rfc.runtime.protocol import Chunk
 
 #: Default cycles without a completed transfer, while work is pending, that count as a stall.
@@ -98,9 +97,7 @@ class StallWatch:
 
 def largest_output(runtime: Runtime) -> int:
     """Bytes of the largest PL→PS transfer the design's publishers can send (header included)."""
-    infrastructure = runtime.plan.design.infrastructure
-    publishers = infrastructure.publishers if infrastructure is not None else ()
-    return CHUNK_HEADER_BYTES + max((c.max_frame_bytes for c in publishers), default=0)
+    return runtime.plan.max_transfer
 
 
 def pending_work(runtime: Runtime, sending: Chunk | None, receiving: bool) -> str:

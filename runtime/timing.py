@@ -17,12 +17,15 @@ import heapq
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from rfc.runtime.core import QueueConfig, Runtime
-from rfc.runtime.plan import RuntimePlan
 from rfc.runtime.protocol import HEADER_SIZE
+
+if TYPE_CHECKING:
+    from rfc.lower.runtime_plan import DesignPlan
 
 
 @dataclass(frozen=True)
@@ -73,7 +76,7 @@ def transfer_ns(size: int, bus_width: int, clock_mhz: float, overhead_cycles: in
 
 
 def measure(
-    plan: RuntimePlan,
+    plan: DesignPlan,
     traffic: Sequence[Traffic],
     queues: QueueConfig,
     duration_ns: int,

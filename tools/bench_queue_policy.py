@@ -17,9 +17,9 @@ from pathlib import Path
 import numpy as np
 
 from rfc.driver import compile_spec
+from rfc.lower.runtime_plan import DesignPlan
 from rfc.messages.limits import Limits
 from rfc.runtime.core import QueueConfig, QueuePolicy
-from rfc.runtime.plan import RuntimePlan
 from rfc.runtime.timing import Traffic, measure, transfer_ns
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -28,7 +28,7 @@ MS = 1_000_000
 DEPTH = 10
 
 
-def runtime_plan() -> RuntimePlan:
+def runtime_plan() -> DesignPlan:
     """The example's runtime, its maxima widened to full-HD images.
 
     The study is of the processor side (queues and the DMA's transfer times), with the paper's
@@ -37,10 +37,10 @@ def runtime_plan() -> RuntimePlan:
     design = compile_spec(SPEC)
     fields = {"data": 1920 * 1080 * 3, "ranges": 2048, "intensities": 2048}
     full_hd = Limits(string=64, fields=fields)
-    return RuntimePlan(replace(design, project=replace(design.project, maxima=full_hd)))
+    return DesignPlan(replace(design, project=replace(design.project, maxima=full_hd)))
 
 
-def sample_messages(plan: RuntimePlan) -> dict[str, bytes]:
+def sample_messages(plan: DesignPlan) -> dict[str, bytes]:
     """A full-HD RGB image, a 1081-beam scan with intensities, and a twist, serialized."""
     types = plan.types
     image = types.build(

@@ -29,11 +29,11 @@ from rfc.runtime.core import DEFAULT_DEPTH, QueuePolicy
 from rfc.runtime.stall import DEFAULT_STALL_CYCLES
 
 if TYPE_CHECKING:
+    from rfc.lower.runtime_plan import DesignPlan
     from rfc.messages.rosbags_adapter import BagMessage, MessageTypes
     from rfc.runtime.account import Account
     from rfc.runtime.core import Published, Runtime
     from rfc.runtime.hardware import SimulationTop
-    from rfc.runtime.plan import RuntimePlan
 
 
 class Backend(StrEnum):
@@ -91,9 +91,9 @@ def sim(
 ) -> None:
     """Replay a bag through the whole system and write each publisher's messages to OUT."""
     from rfc.driver import compile_spec
+    from rfc.lower.runtime_plan import DesignPlan
     from rfc.messages.rosbags_adapter import check_bag_path, message_types, write_bag
     from rfc.runtime.core import QueueConfig, Runtime
-    from rfc.runtime.plan import RuntimePlan
 
     design = compile_spec(str(spec))
     project = design.project
@@ -103,7 +103,7 @@ def sim(
     types = message_types(
         project.middleware, project.distro, tuple(str(p) for p in project.msg_paths), (str(bag),)
     )
-    plan = RuntimePlan(design)
+    plan = DesignPlan(design)
     topic_names = _match_topics(plan, bag, types)
     queues = QueueConfig(queue, depth)
     runtime = Runtime(plan, queues)  # finds every ROS-SW function before anything runs
@@ -228,7 +228,7 @@ class _Run:
             )
 
 
-def _match_topics(plan: RuntimePlan, bag: Path, types: MessageTypes) -> dict[str, str]:
+def _match_topics(plan: DesignPlan, bag: Path, types: MessageTypes) -> dict[str, str]:
     """Bag topic → spec topic for every subscriber; a leading '/' may differ (ROS 1 bags)."""
     from rfc.messages.rosbags_adapter import bag_topics
 
@@ -258,7 +258,7 @@ def _match_topics(plan: RuntimePlan, bag: Path, types: MessageTypes) -> dict[str
     return names
 
 
-def _print_account(console: Console, account: Account, plan: RuntimePlan, out: Path) -> None:
+def _print_account(console: Console, account: Account, plan: DesignPlan, out: Path) -> None:
     table = Table(title=f"account of {plan.design.project.name}", title_justify="left")
     for column in ("", "where", "messages"):
         table.add_column(column, justify="right" if column == "messages" else "left")

@@ -13,11 +13,11 @@ from rfc.ir.model import Design
 from rfc.lower.artifacts import Artifact, BuildOptions, Lowering, ReportSection
 from rfc.lower.hardware import hardware
 from rfc.lower.model import holistic_model
+from rfc.lower.node import processor_node
 from rfc.lower.report import build_report
-from rfc.lower.ros2_node import ros2_node
 
 #: Every lowering, in the order their artifacts are listed in the report.
-LOWERINGS: tuple[Lowering, ...] = (holistic_model, hardware, ros2_node)
+LOWERINGS: tuple[Lowering, ...] = (holistic_model, hardware, processor_node)
 
 
 def lower(design: Design, options: BuildOptions, spec_text: str) -> tuple[Artifact, ...]:

@@ -10,7 +10,6 @@ from __future__ import annotations
 import tempfile
 from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
-from enum import StrEnum
 from functools import cache
 from pathlib import Path
 from typing import Any
@@ -29,18 +28,10 @@ from rosbags.typesys.store import Typestore
 
 from rfc.errors import RfcError, closest, did_you_mean
 
-
-class Middleware(StrEnum):
-    """The robotics middleware whose wire format a converter speaks."""
-
-    ROS1 = "ros1"
-    ROS2 = "ros2"
-
-    @property
-    def label(self) -> str:
-        """The name people write: ``ROS 1``, ``ROS 2``."""
-        return f"ROS {self.value[-1]}"
-
+# The runtime owns these (it ships without the compiler); re-exported for the compiler.
+from rfc.runtime.layout import PRIMITIVE_DTYPES as PRIMITIVE_DTYPES
+from rfc.runtime.layout import PRIMITIVE_SIZES as PRIMITIVE_SIZES
+from rfc.runtime.layout import Middleware as Middleware
 
 DEFAULT_DISTRO = {Middleware.ROS1: "noetic", Middleware.ROS2: "humble"}
 DISTROS = {
@@ -56,40 +47,6 @@ DISTROS = {
         "kilted",
         "lyrical",
     ),
-}
-
-#: Serialized size in bytes of each primitive type rosbags knows how to serialize.
-PRIMITIVE_SIZES = {
-    "bool": 1,
-    "byte": 1,
-    "char": 1,
-    "int8": 1,
-    "uint8": 1,
-    "int16": 2,
-    "uint16": 2,
-    "int32": 4,
-    "uint32": 4,
-    "int64": 8,
-    "uint64": 8,
-    "float32": 4,
-    "float64": 8,
-}
-
-#: NumPy dtype of each primitive, as rosbags stores arrays of it (byte is signed, char unsigned).
-PRIMITIVE_DTYPES = {
-    "bool": np.dtype(np.bool_),
-    "byte": np.dtype(np.int8),
-    "char": np.dtype(np.uint8),
-    "int8": np.dtype(np.int8),
-    "uint8": np.dtype(np.uint8),
-    "int16": np.dtype("<i2"),
-    "uint16": np.dtype("<u2"),
-    "int32": np.dtype("<i4"),
-    "uint32": np.dtype("<u4"),
-    "int64": np.dtype("<i8"),
-    "uint64": np.dtype("<u8"),
-    "float32": np.dtype("<f4"),
-    "float64": np.dtype("<f8"),
 }
 
 #: The member rosbags gives messages without fields (ROS 2's IDL needs one; ROS 1 sends nothing).
@@ -213,6 +170,11 @@ class MessageTypes:
             f"unknown message type '{name}' for {self.middleware.label} {self.distro}",
             hint=hint or "add the directory of your own .msg files with --msg-path",
         )
+
+    def definition(self, canonical: str) -> tuple[str, str]:
+        """The type's definition with every type it uses, as one text, and its ROS 1 MD5 sum."""
+        version = 1 if self.middleware is Middleware.ROS1 else 2
+        return self._store.generate_msgdef(canonical, ros_version=version)
 
     def display_name(self, canonical: str) -> str:
         """Spell a type the way its middleware does: ``pkg/Name`` (ROS 1), ``pkg/msg/Name``."""

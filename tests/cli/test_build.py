@@ -82,7 +82,7 @@ def test_rebuild_replaces_the_whole_output_directory(tmp_path):
     (out / "stale.vhd").write_text("-- from an older build\n")
     assert run_rfc("build", LISTING_1, "-o", out).returncode == 0
     names = sorted(p.name for p in out.iterdir())
-    assert names == [".rfc-build", "build.sh", "hls", "hw", "report.md", "vivado"]
+    assert names == [".rfc-build", "build.sh", "hls", "hw", "report.md", "sw", "vivado"]
     assert not (out / "model.yaml").exists()
     assert sorted(p.name for p in tmp_path.iterdir()) == ["out"]
 

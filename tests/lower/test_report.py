@@ -18,8 +18,10 @@ def test_lowering_produces_the_model_only_when_asked():
     design = compile_spec(LISTING_1)
     spec = LISTING_1.read_text()
     software_only = BuildOptions(hardware=False)
-    assert [a.path for a in lower(design, software_only, spec)] == ["report.md"]
-    model, report = lower(design, BuildOptions(emit_ir=True, hardware=False), spec)
+    node = ["sw/rotation_converter_node_node.py", "sw/rotation_converter_node_plan.json"]
+    paths = [a.path for a in lower(design, software_only, spec)]
+    assert paths == [*node, "sw/README.md", "report.md"]
+    model, *_, report = lower(design, BuildOptions(emit_ir=True, hardware=False), spec)
     assert (model.path, model.kind, model.text) == (
         "model.yaml",
         "holistic model",

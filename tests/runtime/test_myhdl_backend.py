@@ -6,10 +6,10 @@ from functools import partial
 
 import pytest
 
+from rfc.lower.runtime_plan import DesignPlan
 from rfc.runtime.core import Runtime
 from rfc.runtime.loopback import PassThroughLogic, pass_through_routes
 from rfc.runtime.myhdl_sim import simulate_with_myhdl
-from rfc.runtime.plan import RuntimePlan
 from rfc.runtime.replay import replay
 from tests.runtime.echo_top import echo_logic, route_table
 from tests.runtime.support import compiled, pose_messages
@@ -18,7 +18,7 @@ from tests.runtime.support import compiled, pose_messages
 @pytest.mark.parametrize(("width", "cut"), [(8, 5), (32, 0), (32, 3), (64, 1)])
 def test_myhdl_simulation_of_the_logic_equals_the_python_model(tmp_path, width, cut):
     design = compiled(tmp_path, "pose_mixed.yaml", ("busWidth: 64", f"busWidth: {width}"))
-    plan = RuntimePlan(design)
+    plan = DesignPlan(design)
     messages = pose_messages(plan.types, 4)
     expected = replay(Runtime(plan), messages, PassThroughLogic(pass_through_routes(design)))
     runtime = Runtime(plan)
@@ -38,7 +38,7 @@ def test_myhdl_simulation_of_the_logic_equals_the_python_model(tmp_path, width, 
 
 def test_messages_closer_than_the_logic_needs_contend_in_the_queues(tmp_path):
     design = compiled(tmp_path, "pose_mixed.yaml")
-    plan = RuntimePlan(design)
+    plan = DesignPlan(design)
     burst = [m.__class__(m.topic, m.type_name, 0, m.data) for m in pose_messages(plan.types, 14)]
     runtime = Runtime(plan)
     published = simulate_with_myhdl(

@@ -3,13 +3,19 @@
 from __future__ import annotations
 
 import socket
+import subprocess
+import sys
 import threading
+import time
 
+import pytest
+
+from rfc.errors import RfcError
+from rfc.lower.runtime_plan import DesignPlan
 from rfc.runtime.core import QueueConfig, Runtime
 from rfc.runtime.dma_device import FileDma
 from rfc.runtime.loopback import PassThroughLogic, pass_through_routes
 from rfc.runtime.node import NodeCore
-from rfc.runtime.plan import RuntimePlan
 from rfc.runtime.replay import replay
 from tests.runtime.support import compiled, pose_messages
 
@@ -24,7 +30,7 @@ def fake_logic(sock: socket.socket, logic: PassThroughLogic) -> None:
 
 def test_node_core_moves_messages_through_the_dma_devices(tmp_path):
     design = compiled(tmp_path, "pose_mixed.yaml")
-    plan = RuntimePlan(design)
+    plan = DesignPlan(design)
     messages = pose_messages(plan.types, 20)
     expected = replay(Runtime(plan), messages, PassThroughLogic(pass_through_routes(design)))
     ours, theirs = socket.socketpair(socket.AF_UNIX, socket.SOCK_SEQPACKET)
@@ -59,7 +65,7 @@ def test_node_core_moves_messages_through_the_dma_devices(tmp_path):
 
 def test_messages_offered_faster_than_the_dma_overflow_and_are_counted(tmp_path):
     design = compiled(tmp_path, "pose_mixed.yaml")
-    plan = RuntimePlan(design)
+    plan = DesignPlan(design)
     ours, theirs = socket.socketpair(socket.AF_UNIX, socket.SOCK_SEQPACKET)
     core = NodeCore(plan, FileDma(ours.fileno(), ours.fileno(), 1 << 20), lambda _: None)
     for message in pose_messages(plan.types, 15):  # not started: nothing leaves the queue
@@ -68,3 +74,57 @@ def test_messages_offered_faster_than_the_dma_overflow_and_are_counted(tmp_path)
     account = core.stop()
     theirs.close()
     assert account.dropped == {("Pose_sub", "overflow"): 5, ("Pose_sub", "unsent"): 10}
+
+
+class SilentLogic:
+    """DMA channels whose logic never takes a transfer (a bitstream that does not answer)."""
+
+    def __init__(self):
+        self.closed = threading.Event()
+
+    def write(self, transfer):
+        self.closed.wait()
+
+    def read(self):
+        self.closed.wait()
+        return b""
+
+    def close(self):
+        self.closed.set()
+
+
+def test_a_logic_that_takes_no_transfer_is_an_error_after_the_answer_timeout(tmp_path):
+    plan = DesignPlan(compiled(tmp_path, "pose_mixed.yaml"))
+    core = NodeCore(plan, SilentLogic(), lambda _: None)
+    core.start()
+    core.on_message("/amcl_pose", pose_messages(plan.types, 1)[0].data)
+    core.check(timeout=0.2)  # just written: not yet late
+    time.sleep(0.3)
+    with pytest.raises(RfcError, match=r"the logic has not taken a PS→PL transfer in 0.2 s"):
+        core.check(timeout=0.2)
+    core.stop()
+
+
+def test_the_node_imports_only_the_runtime_and_its_two_dependencies(tmp_path, examples_dir):
+    """What the `runtime` extra promises: numpy and rosbags, no compiler, no simulator."""
+    from tests.support.cli import run_rfc
+
+    spec = examples_dir / "quaternion_to_euler" / "project.yaml"
+    assert run_rfc("build", spec, "-o", tmp_path / "build", "--no-hardware").returncode == 0
+    plan_file = tmp_path / "build" / "sw" / "quaternion_to_euler_plan.json"
+    script = (
+        "import sys\n"
+        "from rfc.runtime.core import Runtime\n"
+        "from rfc.runtime.plan import load_plan\n"
+        "import rfc.runtime.node, rfc.runtime.ros1, rfc.runtime.ros2, rfc.runtime.transports\n"
+        f"Runtime(load_plan(__import__('pathlib').Path({str(plan_file)!r})))\n"
+        "print(' '.join(sorted({m.split('.')[0] for m in sys.modules} | "
+        "{m for m in sys.modules if m.startswith('rfc.')})))\n"
+    )
+    result = subprocess.run(
+        [sys.executable, "-c", script], capture_output=True, text=True, check=True
+    )
+    loaded = set(result.stdout.split())
+    assert {m for m in loaded if m.startswith("rfc.") and not m.startswith("rfc.runtime")} == set()
+    assert not loaded & {"myhdl", "cocotb", "typer", "numba", "matplotlib", "rich", "rclpy"}
+    assert {"numpy", "rosbags"} <= loaded

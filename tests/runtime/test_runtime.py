@@ -6,9 +6,9 @@ import pytest
 
 from rfc.driver import compile_spec
 from rfc.errors import RfcError
+from rfc.lower.runtime_plan import DesignPlan
 from rfc.runtime.core import QueueConfig, QueuePolicy, Runtime
 from rfc.runtime.loopback import PassThroughLogic, pass_through_routes
-from rfc.runtime.plan import RuntimePlan
 from rfc.runtime.protocol import Chunk, ChunkFlags
 from rfc.runtime.replay import replay
 from tests.runtime.support import compiled, pose_messages, system_copy
@@ -17,7 +17,7 @@ POSE = "geometry_msgs/msg/PoseWithCovarianceStamped"
 
 
 def run(design, messages, cut=0, queues=None):
-    runtime = Runtime(RuntimePlan(design), queues)
+    runtime = Runtime(DesignPlan(design), queues)
     logic = (
         PassThroughLogic(pass_through_routes(design), cut)
         if design.infrastructure.subscribers
@@ -29,7 +29,7 @@ def run(design, messages, cut=0, queues=None):
 @pytest.mark.parametrize("cut", [0, 40])
 def test_mixed_system_runs_software_between_two_hardware_parts(tmp_path, cut):
     design = compiled(tmp_path, "pose_mixed.yaml")
-    plan = RuntimePlan(design)
+    plan = DesignPlan(design)
     messages = pose_messages(plan.types, 12)
     runtime, published = run(design, messages, cut)
     assert [p.stamp for p in published] == [m.timestamp_ns for m in messages]
@@ -69,7 +69,7 @@ def test_switching_accelerators_to_software_changes_no_output(tmp_path, switch):
       output: [{message: geometry_msgs/PoseWithCovarianceStamped}]
 blocks:"""
     reference = compiled(tmp_path, "pose_mixed.yaml")
-    plan = RuntimePlan(reference)
+    plan = DesignPlan(reference)
     messages = pose_messages(plan.types, 6)
     _, expected = run(reference, messages)
     (tmp_path / "variant").mkdir()
@@ -86,7 +86,7 @@ def test_a_software_connection_carries_only_its_selection(tmp_path):
         ("{name: Clear}", "{name: Clear, include: [header, pose.pose]}"),
         ("type: MyHDL", "type: ROS-SW"),
     )
-    plan = RuntimePlan(design)
+    plan = DesignPlan(design)
     messages = pose_messages(plan.types, 3)
     _, published = run(design, messages)
     first = plan.types.deserialize(published[2].data, POSE)
@@ -97,7 +97,7 @@ def test_a_software_connection_carries_only_its_selection(tmp_path):
 
 def test_overflow_drops_the_oldest_and_counts_it(tmp_path):
     design = compiled(tmp_path, "pose_mixed.yaml")
-    runtime = Runtime(RuntimePlan(design), QueueConfig(QueuePolicy.PER_SUBSCRIBER, depth=2))
+    runtime = Runtime(DesignPlan(design), QueueConfig(QueuePolicy.PER_SUBSCRIBER, depth=2))
     messages = pose_messages(runtime.plan.types, 5)
     for message in messages:
         runtime.offer(message.topic, message.data, message.timestamp_ns)
@@ -109,7 +109,7 @@ def test_overflow_drops_the_oldest_and_counts_it(tmp_path):
 
 def test_protocol_errors_and_malformed_messages_are_counted(tmp_path):
     design = compiled(tmp_path, "pose_mixed.yaml")
-    runtime = Runtime(RuntimePlan(design))
+    runtime = Runtime(DesignPlan(design))
     good = pose_messages(runtime.plan.types, 1)[0].data
     assert runtime.receive(b"\x01\x00", 0) == []
     assert runtime.receive(Chunk(9, ChunkFlags.WHOLE, 3, b"abc").to_bytes(), 0) == []
@@ -134,7 +134,7 @@ def test_a_failing_software_accelerator_stops_the_run_with_its_message(tmp_path)
     path = system_copy(tmp_path, "pose_mixed.yaml", ("top: clear_covariance", "top: identity"))
     (tmp_path / "passthrough.py").write_text("def identity(message):\n    return 1 / 0\n")
     design = compile_spec(path)
-    runtime = Runtime(RuntimePlan(design))
+    runtime = Runtime(DesignPlan(design))
     message = pose_messages(runtime.plan.types, 1)[0]
     runtime.offer(message.topic, message.data, 0)
     chunk, _ = runtime.next_transfer()
@@ -149,7 +149,7 @@ def test_a_software_accelerator_must_return_its_output_type(tmp_path):
         "def identity(message):\n    return message.pose\n\n"
         "def clear_covariance(m):\n    return m\n"
     )
-    runtime = Runtime(RuntimePlan(compile_spec(path)))
+    runtime = Runtime(DesignPlan(compile_spec(path)))
     message = pose_messages(runtime.plan.types, 1)[0]
     with pytest.raises(RfcError, match="returned a geometry_msgs/msg/PoseWithCovariance on output"):
         runtime.offer(message.topic, message.data, 0)
@@ -158,4 +158,4 @@ def test_a_software_accelerator_must_return_its_output_type(tmp_path):
 def test_a_software_accelerator_without_its_function_is_reported(tmp_path):
     path = system_copy(tmp_path, "pose_mixed.yaml", ("top: clear_covariance", "top: clear_it"))
     with pytest.raises(RfcError, match="defines no function 'clear_it' for ROS-SW accelerator"):
-        Runtime(RuntimePlan(compile_spec(path)))
+        Runtime(DesignPlan(compile_spec(path)))

@@ -8,9 +8,9 @@ import pytest
 
 from rfc.driver import compile_spec
 from rfc.errors import RfcError
+from rfc.lower.runtime_plan import DesignPlan
 from rfc.runtime.core import Runtime
 from rfc.runtime.loopback import PassThroughLogic, pass_through_routes
-from rfc.runtime.plan import RuntimePlan
 from rfc.runtime.replay import replay
 from tests.runtime.support import SYSTEMS, compiled, pose_messages
 
@@ -58,7 +58,7 @@ def test_python_spec_runs_its_callables_as_the_yaml_spec_runs_its_files(tmp_path
     assert python_design.infrastructure.software == yaml_design.infrastructure.software
     results = []
     for design in (python_design, yaml_design):
-        runtime = Runtime(RuntimePlan(design))
+        runtime = Runtime(DesignPlan(design))
         messages = pose_messages(runtime.plan.types, 5)
         logic = PassThroughLogic(pass_through_routes(design))
         results.append(replay(runtime, messages, logic))
@@ -69,7 +69,7 @@ def test_python_spec_runs_its_callables_as_the_yaml_spec_runs_its_files(tmp_path
 def test_several_inputs_fire_on_the_newest_of_each_and_count_the_rest(tmp_path):
     (tmp_path / "pair.py").write_text(PAIR_PY)
     (tmp_path / "pair.yaml").write_text(PAIR)
-    runtime = Runtime(RuntimePlan(compile_spec(tmp_path / "pair.yaml")))
+    runtime = Runtime(DesignPlan(compile_spec(tmp_path / "pair.yaml")))
     messages = pose_messages(runtime.plan.types, 6)
     assert runtime.offer("/a", messages[0].data, 1) == []
     assert runtime.offer("/a", messages[1].data, 2) == []  # supersedes the first
@@ -100,7 +100,7 @@ def test_several_inputs_fire_on_the_newest_of_each_and_count_the_rest(tmp_path):
 def test_what_a_function_returns_is_checked(tmp_path, body, message):
     (tmp_path / "pair.py").write_text(f"def AddX(a, b):\n    {body}\n")
     (tmp_path / "pair.yaml").write_text(PAIR)
-    runtime = Runtime(RuntimePlan(compile_spec(tmp_path / "pair.yaml")))
+    runtime = Runtime(DesignPlan(compile_spec(tmp_path / "pair.yaml")))
     first, second = pose_messages(runtime.plan.types, 2)
     runtime.offer("/a", first.data, 1)
     with pytest.raises(RfcError, match=message):

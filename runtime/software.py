@@ -24,6 +24,7 @@ from typing import Any
 from rfc.errors import RfcError
 from rfc.ir.model import AcceleratorType, Block
 from rfc.spec.python_sources import function_in
+from rfc.spec.user_code import running_user_code
 
 _ROLE = "ROS-SW accelerator"
 
@@ -93,8 +94,15 @@ class SoftwareAccelerator:
         """
         arguments, self._slots = self._slots, [None] * len(self.inputs)
         self.calls += 1
+        what = (
+            f"ROS-SW function '{getattr(self.function, '__name__', '?')}' of accelerator "
+            f"'{self.name}' (call {self.calls})"
+        )
         try:
-            result = self.function(*arguments)
+            with running_user_code(what):
+                result = self.function(*arguments)
+        except RfcError:
+            raise
         except Exception as exc:  # the user's function failed: stop with its words
             raise RfcError(
                 f"ROS-SW accelerator '{self.name}' raised {type(exc).__name__}: {exc} "

@@ -67,6 +67,8 @@ def test_table_output_names_the_figures():
         (("-a", "LST", "-n", "0"), "between 1 and 1024 inputs, not 0"),
         (("-a", "LST", "-n", "4", "--deadline", "0"), "at least 1 cycle"),
         (("-a", "LRU(LST:1,LST:1)", "-n", "4"), "must share the 4 inputs"),
+        (("-a", "LOEDF", "-n", "2", "--counter-bits", "0"), "counter width 0 bits cannot hold"),
+        (("-a", "LST", "-n", "2", "--counter-bits", "-3"), "it must be from 1 to 48"),
     ],
 )
 def test_bad_input_is_one_message_and_exit_1(args, message):

@@ -12,14 +12,15 @@ from __future__ import annotations
 
 import shutil
 import tempfile
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
+from contextlib import contextmanager
 from pathlib import Path, PurePosixPath
 
 from rfc.errors import RfcError
 from rfc.lower.artifacts import Artifact
 from rfc.lower.manifest import MARKER, files_under, manifest_text, read_manifest
 
-__all__ = ["MARKER", "replace_directory", "write_artifacts"]
+__all__ = ["MARKER", "kept_in", "replace_directory", "write_artifacts"]
 
 
 def write_artifacts(
@@ -91,6 +92,37 @@ def replace_directory(
         shutil.rmtree(staging, ignore_errors=True)
 
 
+@contextmanager
+def kept_in(directory: Path, command: str) -> Iterator[Path]:
+    """A scratch directory whose files replace rfc's files in `directory` when the block ends.
+
+    For commands that keep their working files on request (``--keep DIR``): `directory` is
+    checked first, so a directory rfc would refuse is refused before any work; the files are
+    kept even when the work fails, for its logs.
+
+    Raises:
+        RfcError: `directory` is a file, or a non-empty directory rfc did not write.
+    """
+    display = str(directory)
+    target = directory.resolve()
+    if target.exists() and not target.is_dir():
+        raise RfcError(f"'{display}' exists and is not a directory")
+    _files_to_keep(target, display, command, ())
+    scratch = Path(tempfile.mkdtemp(prefix="rfc-keep-"))
+    try:
+        yield scratch
+    finally:
+        try:
+            replace_directory(
+                directory,
+                display,
+                lambda staging: shutil.copytree(scratch, staging, dirs_exist_ok=True),
+                command,
+            )
+        finally:
+            shutil.rmtree(scratch, ignore_errors=True)
+
+
 def _files_to_keep(
     target: Path, display: str, command: str, inputs: Iterable[Path]
 ) -> dict[str, str]:
@@ -102,7 +134,7 @@ def _files_to_keep(
         raise RfcError(
             f"output directory '{display}' holds files that {command} did not write; "
             "refusing to replace it",
-            hint="choose another directory with -o, or empty this one",
+            hint="choose another (new or empty) directory, or empty this one",
         )
     present = [path for path in files_under(target) if path != MARKER]
     kept = {path: "a file rfc did not write" for path in present if path not in owned}

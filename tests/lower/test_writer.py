@@ -8,7 +8,7 @@ import pytest
 
 from rfc.errors import RfcError
 from rfc.lower.manifest import HEADER, MARKER
-from rfc.lower.writer import replace_directory
+from rfc.lower.writer import kept_in, replace_directory
 
 
 def _writer(files: dict[str, str]):
@@ -122,3 +122,24 @@ def test_an_empty_directory_is_used_and_a_file_is_refused(tmp_path):
     (tmp_path / "file").write_text("mine")
     with pytest.raises(RfcError, match="exists and is not a directory"):
         replace_directory(tmp_path / "file", "file", _writer({"a.vhd": "a"}))
+
+
+def test_kept_files_replace_the_last_runs_and_a_users_directory_is_refused_first(tmp_path):
+    keep = tmp_path / "keep"
+    with kept_in(keep, "rfc msg loopback") as scratch:
+        (scratch / "run.log").write_text("first")
+
+    def failing_run() -> None:
+        with kept_in(keep, "rfc msg loopback") as scratch:
+            (scratch / "run.log").write_text("failed run")
+            raise RuntimeError  # the work failed: its files are kept all the same
+
+    with pytest.raises(RuntimeError):
+        failing_run()
+    assert _tree(keep)["run.log"] == "failed run"
+    mine = tmp_path / "mine"
+    mine.mkdir()
+    (mine / "notes.txt").write_text("mine")
+    with pytest.raises(RfcError, match="did not write"), kept_in(mine, "rfc msg loopback"):
+        pytest.fail("the work must not start")
+    assert _tree(mine) == {"notes.txt": "mine"}

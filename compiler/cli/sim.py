@@ -94,7 +94,7 @@ def sim(
 ) -> None:
     """Replay a bag through the whole system and write each publisher's messages to OUT."""
     from rfc.driver import compile_spec
-    from rfc.messages.bag_files import refuse_to_replace_a_non_bag
+    from rfc.messages.bag_files import check_input_bag, refuse_to_replace_a_non_bag
     from rfc.messages.rosbags_adapter import check_bag_path, message_types, write_bag
     from rfc.runtime.core import QueueConfig, Runtime
     from rfc.runtime.plan import RuntimePlan
@@ -103,6 +103,7 @@ def sim(
     project = design.project
     check_bag_path(out, project.middleware)
     refuse_to_replace_a_non_bag(out, force)
+    check_input_bag(bag, project.middleware)
     if out.resolve() == bag.resolve():
         raise RfcError(f"--out '{out}' is the input bag", hint="write the outputs to a new file")
     types = message_types(

@@ -16,6 +16,7 @@ from rfc.messages.limits import MAX_LENGTH, Limits
 from rfc.messages.rosbags_adapter import DEFAULT_DISTRO, DISTROS, Middleware
 from rfc.spec import parts
 from rfc.spec.python_names import check_defines
+from rfc.spec.text_files import binary_reason
 
 DEFAULT_FPGA_PART = "xc7z020clg400-1"
 DEFAULT_MIDDLEWARE = Middleware.ROS2
@@ -180,7 +181,7 @@ def message_directory(text: str, base: Path, location: SourceLocation) -> Path:
 def check_source_suffixes(
     kind: AcceleratorKind, sources: list[tuple[Path, SourceLocation]], owner: str
 ) -> None:
-    """Check that each source file is written in a language the accelerator kind uses."""
+    """Check that each source file is text in a language the accelerator kind uses."""
     allowed = SOURCE_SUFFIXES[kind]
     for path, location in sources:
         if path.suffix.lower() not in allowed:
@@ -188,6 +189,13 @@ def check_source_suffixes(
                 f"{owner} is {kind.value}, whose sources end in {', '.join(allowed)}; "
                 f"'{path.name}' does not",
                 location=location,
+            )
+        reason = binary_reason(path) if path.is_file() else None
+        if reason is not None:
+            raise RfcError(
+                f"'{path.name}' is not a source: it is binary, not {kind.value} text ({reason})",
+                location=location,
+                hint=f"name the {kind.value} source files of {owner}",
             )
 
 

@@ -29,6 +29,7 @@ from rfc.lower.system.interfaces import MESSAGE, Pin, accelerator_pins
 from rfc.lower.system.latency import accelerator_latency
 from rfc.messages.limits import Limits
 from rfc.spec.python_sources import function_in
+from rfc.spec.user_code import running_user_code
 from rfc.toolchain import GhdlError, read_entities
 
 #: Ports every accelerator has besides its message pins.
@@ -124,7 +125,22 @@ def _myhdl(
     _check_signature(accelerator, function, [d.name for d in declared])
     name = entity_name(accelerator)
     signals = [_signal_port(d) for d in declared]
-    component = convert(name, signals, function, directory, f"MyHDL accelerator {accelerator.name}")
+    try:
+        with running_user_code(f"converting MyHDL accelerator '{accelerator.name}'"):
+            component = convert(
+                name, signals, function, directory, f"MyHDL accelerator {accelerator.name}"
+            )
+    except RfcError:
+        raise
+    except Exception as exc:  # the user's block failed to elaborate or convert: say where
+        sources = ", ".join(p.name for p in accelerator.sources) or "its source"
+        raise RfcError(
+            f"MyHDL accelerator '{accelerator.name}' (block '{accelerator.top}' in {sources}) "
+            f"failed to convert: {type(exc).__name__}: {exc}",
+            location=accelerator.location,
+            hint="the block gets clk, rst, then in<i>_/out<i>_ signals for each field its "
+            "connections carry; rfc build --emit-ir lists them",
+        ) from None
     inputs = [
         p
         for p in ports

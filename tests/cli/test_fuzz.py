@@ -36,7 +36,7 @@ def test_a_mutated_spec_that_builds_gives_vhdl_ghdl_analyses(case):
     with tempfile.TemporaryDirectory() as work:
         listing_1_copy(Path(work))
         (Path(work) / f"spec.{suffix}").write_text(text)
-        outcome = run(["build", f"spec.{suffix}", "-o", "out"], Path(work))
+        outcome = run(["build", f"spec.{suffix}", "-o", "out"], Path(work), fresh=True)
         assert outcome.handled, _explain(outcome)
         if outcome.status == 0:
             assert build_analyses(Path(work) / "out") is None
@@ -61,7 +61,7 @@ def test_random_bytes_as_spec_source_or_bag_are_one_message(data, args):
         for name in ("x.yaml", "x.py", "x.bag", "x.mcap"):
             (Path(work) / name).write_bytes(data)
         (Path(work) / "QuaternionToEulerConverter.cpp").write_bytes(data)
-        outcome = run(list(args), Path(work))
+        outcome = run(list(args), Path(work), fresh=args[0] == "build")
     assert outcome.handled, _explain(outcome)
     assert outcome.status != 0 or args[0] == "build"  # random bytes are never a valid spec/bag
 

@@ -1,7 +1,8 @@
 """Random bad input for the command line: mutated specs, random bytes, random option values.
 
 Shared by the bounded property test (tests/cli/test_fuzz.py) and the longer campaign
-(tools/fuzz_cli.py). Every case runs the real entry point, `rfc.cli.main`, in process; a case is
+(tools/fuzz_cli.py). Every case runs the real entry point, `rfc.cli.main`, in process, or the
+real `rfc` in a subprocess where a fresh interpreter matters (builds); a case is
 handled when rfc exits 0, 1 (one `error:` message) or 2 (bad usage) without an exception
 escaping, within its time limit, and when a build it accepted holds VHDL that GHDL analyses.
 """
@@ -12,6 +13,7 @@ import contextlib
 import io
 import os
 import shutil
+import subprocess
 import sys
 import tempfile
 import time
@@ -92,8 +94,14 @@ class Outcome:
         return self.status in (0, 2)
 
 
-def run(args: list[str], cwd: Path) -> Outcome:
-    """Run `rfc ARGS` in process from `cwd` (user code limited to 2 s)."""
+def run(args: list[str], cwd: Path, fresh: bool = False) -> Outcome:
+    """Run `rfc ARGS` from `cwd` (user code limited to 2 s), in process or `fresh`.
+
+    A fresh interpreter (a subprocess, as a user runs rfc) is needed for builds: MyHDL keeps
+    elaboration state between conversions, so one failed in-process build can disturb the next.
+    """
+    if fresh:
+        return _run_fresh(args, cwd)
     started = time.monotonic()
     stderr = io.StringIO()
     status: int | None = 0
@@ -117,6 +125,25 @@ def run(args: list[str], cwd: Path) -> Outcome:
         else:
             os.environ[TIME_LIMIT_ENV] = saved[2]
     return Outcome(tuple(args), status, stderr.getvalue(), time.monotonic() - started, escaped)
+
+
+def _run_fresh(args: list[str], cwd: Path) -> Outcome:
+    started = time.monotonic()
+    try:
+        done = subprocess.run(
+            [sys.executable, "-m", "rfc", *args],
+            cwd=cwd,
+            capture_output=True,
+            text=True,
+            env={**os.environ, TIME_LIMIT_ENV: "2"},
+            timeout=CASE_LIMIT_S,
+            check=False,
+        )
+    except subprocess.TimeoutExpired:
+        return Outcome(tuple(args), None, "", time.monotonic() - started, "no end in time")
+    stderr = done.stderr
+    escaped = stderr.strip().splitlines()[-1] if "Traceback" in stderr else None
+    return Outcome(tuple(args), done.returncode, stderr, time.monotonic() - started, escaped)
 
 
 @st.composite

@@ -19,6 +19,7 @@ from collections.abc import Callable, Sequence
 from typing import Any
 
 from rfc.runtime.errors import RfcError
+from rfc.runtime.user_code import running_user_code
 
 Function = Callable[..., Any]
 
@@ -72,8 +73,15 @@ class SoftwareAccelerator:
         """
         arguments, self._slots = self._slots, [None] * len(self.inputs)
         self.calls += 1
+        what = (
+            f"ROS-SW function '{getattr(self.function, '__name__', '?')}' of accelerator "
+            f"'{self.name}' (call {self.calls})"
+        )
         try:
-            result = self.function(*arguments)
+            with running_user_code(what):
+                result = self.function(*arguments)
+        except RfcError:
+            raise
         except Exception as exc:  # the user's function failed: stop with its words
             raise RfcError(
                 f"ROS-SW accelerator '{self.name}' raised {type(exc).__name__}: {exc} "

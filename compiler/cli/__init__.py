@@ -6,6 +6,7 @@ Exit status: 0 success, 1 an error in the user's input (printed as one message, 
 
 from __future__ import annotations
 
+import signal
 import sys
 
 import typer
@@ -14,6 +15,7 @@ from rich.console import Console
 from rfc import __version__
 from rfc.cli.build import build_app
 from rfc.cli.dse import dse_app
+from rfc.cli.interrupt import on_interrupt
 from rfc.cli.msg import msg_app
 from rfc.cli.sched import sched_app
 from rfc.cli.sim import sim_app
@@ -52,12 +54,15 @@ def _root(
 
 def main() -> None:
     """Run the command line; user errors become one message on stderr and exit status 1."""
+    previous = signal.signal(signal.SIGINT, on_interrupt)  # typer exits 130, no traceback
     try:
         app()
     except RfcError as exc:
         console = Console(stderr=True, highlight=False, soft_wrap=True)
         console.print(f"[bold red]error:[/] {_escape(str(exc))}")
         sys.exit(1)
+    finally:
+        signal.signal(signal.SIGINT, previous)
 
 
 def _escape(text: str) -> str:

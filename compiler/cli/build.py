@@ -87,9 +87,15 @@ def build(
     design = compile_spec(str(spec), after=dump, pipeline=pipeline)
     options = BuildOptions(emit_ir=emit_ir, estimate=estimate, hardware=not no_hardware)
     artifacts = lower(design, options, spec.read_text(encoding="utf-8"))
-    write_artifacts(artifacts, output, str(output))
+    write_artifacts(artifacts, output, str(output), inputs=_inputs(spec, design))
     names = ", ".join(a.path for a in artifacts)
     print(f"built {design.project.name} into {output}: {names}", file=sys.stderr)
+
+
+def _inputs(spec: Path, design: Design) -> tuple[Path, ...]:
+    """Everything the build read: never overwritten nor deleted by the writer."""
+    sources = (source for accelerator in design.accelerators for source in accelerator.sources)
+    return (spec, *sources, *design.project.msg_paths)
 
 
 def _summary(design: Design) -> str:

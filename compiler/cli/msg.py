@@ -13,6 +13,7 @@ from rich.table import Table
 
 from rfc.errors import RfcError
 from rfc.lib.converters.loopback_run import LoopbackReport, loopback
+from rfc.lower.writer import kept_in
 from rfc.messages.layout import Layout, LayoutField, flatten
 from rfc.messages.rosbags_adapter import Middleware, message_types
 from rfc.messages.selection import select
@@ -166,9 +167,12 @@ def loopback_command(
     """
     if not bag.exists():
         raise RfcError(f"bag '{bag}' does not exist", hint="give the path of a .bag, .mcap or .db3")
-    report = loopback(
-        type_name, bag, topic=topic, middleware=middleware, width=width, count=count, workdir=keep
-    )
+    options = {"topic": topic, "middleware": middleware, "width": width, "count": count}
+    if keep is None:
+        report = loopback(type_name, bag, **options)
+    else:
+        with kept_in(keep, "rfc msg loopback") as scratch:
+            report = loopback(type_name, bag, **options, workdir=scratch)
     if as_json:
         print(json.dumps(report.as_json(), indent=2))
     else:

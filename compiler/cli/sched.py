@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from functools import partial
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -17,6 +18,7 @@ from rfc.lib.schedulers.spec import (
     SchedulerSpec,
     parse_scheduler,
 )
+from rfc.lower.writer import replace_directory
 
 sched_app = typer.Typer(help="Generate and measure the hardware schedulers.", no_args_is_help=True)
 
@@ -52,8 +54,9 @@ def synth(
 ) -> None:
     """LUT/FF of one scheduler (GHDL synthesis + Yosys synth_xilinx, 7-series) and its latency."""
     spec = parse_scheduler(algorithm, n, transfer, deadline, counter_bits)
-    if output is not None:
-        generate_hdl(spec, output)
+    if output is not None:  # rfc's files only, all at once: the writer of rfc build
+        fill = partial(generate_hdl, spec)
+        replace_directory(output, str(output), fill, command="rfc sched synth")
     report = synth_report(spec, use_cache=not no_cache)
     if as_json:
         print(json.dumps(report, indent=2))

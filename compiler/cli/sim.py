@@ -88,16 +88,22 @@ def sim(
     top_provider: Annotated[
         str | None, typer.Option("--top-provider", hidden=True, metavar="MODULE:FUNCTION")
     ] = None,
+    force: Annotated[
+        bool, typer.Option("--force", help="Replace OUT even when it exists and is not a bag.")
+    ] = False,
 ) -> None:
     """Replay a bag through the whole system and write each publisher's messages to OUT."""
     from rfc.driver import compile_spec
     from rfc.lower.runtime_plan import DesignPlan
+    from rfc.messages.bag_files import check_input_bag, refuse_to_replace_a_non_bag
     from rfc.messages.rosbags_adapter import check_bag_path, message_types, write_bag
     from rfc.runtime.core import QueueConfig, Runtime
 
     design = compile_spec(str(spec))
     project = design.project
     check_bag_path(out, project.middleware)
+    refuse_to_replace_a_non_bag(out, force)
+    check_input_bag(bag, project.middleware)
     if out.resolve() == bag.resolve():
         raise RfcError(f"--out '{out}' is the input bag", hint="write the outputs to a new file")
     types = message_types(

@@ -18,6 +18,7 @@ from rfc.messages.layout import flatten
 from rfc.messages.rosbags_adapter import MessageTypes
 from rfc.messages.selection import validate_pattern
 from rfc.passes.base import types_of
+from rfc.passes.generated_names import check_generated_names
 from rfc.passes.graph import check_graph
 from rfc.passes.names import check_identifier, check_topic, check_unique
 from rfc.passes.selections import carried_fields
@@ -69,6 +70,7 @@ def _check_names(design: Design) -> None:
         if block.topic is not None:
             check_topic(block.topic, f"{block.kind.value} '{block.name}'", block.at("topic"))
     check_unique(((b.name, b.at("name")) for b in design.blocks), "block")
+    check_generated_names(design)
 
 
 def _check_port_needs(design: Design, types: MessageTypes) -> None:

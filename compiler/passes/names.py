@@ -2,7 +2,8 @@
 
 VHDL basic identifiers start with a letter, hold letters, digits and single underscores, do
 not end with an underscore, are not reserved words, and are case-insensitive — so two blocks
-whose names differ only in case would clash in the generated hardware.
+whose names differ only in case would clash in the generated hardware. Names also become file
+names, so they are at most `MAX_NAME_LENGTH` characters long.
 """
 
 from __future__ import annotations
@@ -136,8 +137,26 @@ VHDL_RESERVED = frozenset(
 )
 
 
+#: The longest name a spec may give: generated file names add a suffix and must stay short.
+MAX_NAME_LENGTH = 64
+
+
+def snake_identifier(name: str) -> str:
+    """A VHDL identifier made from a name: snake case, no doubled or trailing underscores."""
+    snake = re.sub(r"(?<=[a-z0-9])(?=[A-Z])", "_", name).lower()
+    cleaned = re.sub(r"_+", "_", re.sub(r"[^a-z0-9_]", "_", snake)).strip("_")
+    return cleaned if cleaned[:1].isalpha() else f"x_{cleaned}"
+
+
 def check_identifier(name: str, what: str, location: SourceLocation, where: str = "") -> None:
     """Raise unless `name` can be a VHDL identifier (`where` scopes it: `` of block 'X'``)."""
+    if len(name) > MAX_NAME_LENGTH:
+        raise RfcError(
+            f"{what} '{name[:20]}...'{where} is {len(name):,} characters long; names are at "
+            f"most {MAX_NAME_LENGTH}",
+            location=location,
+            hint="shorten it; it names generated files and hardware",
+        )
     if not _IDENTIFIER.fullmatch(name):
         raise RfcError(
             f"{what} '{name}'{where} is not a valid name; it names generated hardware",

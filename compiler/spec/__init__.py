@@ -6,6 +6,7 @@ from pathlib import Path
 
 from rfc.errors import RfcError
 from rfc.ir.model import Design
+from rfc.spec.text_files import binary_reason
 
 #: Spec formats by file suffix.
 SPEC_SUFFIXES = (".yaml", ".yml", ".py")
@@ -25,6 +26,8 @@ def load_spec(path: Path, display: str | None = None) -> Design:
     if not path.is_file():
         raise RfcError(f"spec '{display}' does not exist")
     suffix = path.suffix.lower()
+    if suffix in SPEC_SUFFIXES:
+        _refuse_binary(path, display)
     if suffix in (".yaml", ".yml"):
         from rfc.spec.yaml_frontend import load_yaml_spec
 
@@ -37,3 +40,16 @@ def load_spec(path: Path, display: str | None = None) -> Design:
         f"spec '{display}' is neither YAML nor Python; expected a file ending in "
         f"{', '.join(SPEC_SUFFIXES)}"
     )
+
+
+def _refuse_binary(path: Path, display: str) -> None:
+    """A spec is UTF-8 text without NUL bytes; say so plainly for anything else."""
+    try:
+        reason = binary_reason(path)
+    except OSError as exc:
+        raise RfcError(f"cannot read spec '{display}': {exc.strerror}") from None
+    if reason is not None:
+        raise RfcError(
+            f"'{display}' is not a spec: it is binary, not YAML or Python text ({reason})",
+            hint="give the .yaml or .py file that describes the system",
+        )

@@ -17,6 +17,9 @@ from rfc.errors import RfcError, SourceLocation, did_you_mean
 from rfc.ir.model import SCHEDULER_ALGORITHMS, AcceleratorKind, FunctionRef
 from rfc.messages.limits import MAX_LENGTH, Limits
 from rfc.messages.rosbags_adapter import DEFAULT_DISTRO, DISTROS, Middleware
+from rfc.spec import parts
+from rfc.spec.python_names import check_defines
+from rfc.spec.text_files import binary_reason
 
 DEFAULT_FPGA_PART = "xc7z020clg400-1"
 DEFAULT_MIDDLEWARE = Middleware.ROS2
@@ -31,8 +34,6 @@ _MIDDLEWARES = {
     "ros2": Middleware.ROS2,
     "ros 2": Middleware.ROS2,
 }
-#: Part-number prefixes of the supported device families (Vivado's family names).
-_FAMILIES = {"xc7z": "zynq", "xczu": "zynquplus"}
 #: Source file suffixes each accelerator kind is written in.
 SOURCE_SUFFIXES = {
     AcceleratorKind.HLS: (".cpp", ".cc", ".cxx", ".c", ".h", ".hpp"),
@@ -71,16 +72,7 @@ def distro(name: str | None, chosen: Middleware, location: SourceLocation) -> st
 
 def fpga_family(part: str, location: SourceLocation) -> str:
     """Derive the device family from a part number, as the paper's tool does."""
-    lowered = part.strip().lower()
-    for prefix, family in _FAMILIES.items():
-        if lowered.startswith(prefix) and re.fullmatch(r"[a-z0-9-]+", lowered):
-            return family
-    raise RfcError(
-        f"FPGA part '{part}' is not a Zynq device; rfc needs a processor beside the logic",
-        location=location,
-        hint="use a Zynq-7000 (xc7z...) or Zynq UltraScale+ (xczu...) part, "
-        "such as xc7z020clg400-1",
-    )
+    return parts.fpga_family(part, location)
 
 
 def bus_width(width: int, location: SourceLocation) -> int:
@@ -93,10 +85,20 @@ def bus_width(width: int, location: SourceLocation) -> int:
     return width
 
 
+#: The clocks a Zynq's programmable logic can run at, in MHz (its fabric tops out below 1 GHz).
+CLOCK_RANGE_MHZ = (1.0, 1000.0)
+
+
 def clock_mhz(value: float, location: SourceLocation) -> float:
-    """Check a clock frequency."""
-    if not value > 0:
-        raise RfcError(f"clock must be a positive number of MHz, not {value}", location=location)
+    """Check a clock frequency: a real one, within `CLOCK_RANGE_MHZ`."""
+    low, high = CLOCK_RANGE_MHZ
+    if not low <= value <= high:  # also refuses NaN
+        raise RfcError(
+            f"clock must be from {low:g} to {high:g} MHz, not {value}",
+            location=location,
+            hint="Zynq logic typically runs at 50 to 250 MHz; the default is "
+            f"{DEFAULT_CLOCK_MHZ:g}",
+        )
     return float(value)
 
 
@@ -197,7 +199,7 @@ def message_directory(text: str, base: Path, location: SourceLocation) -> Path:
 def check_source_suffixes(
     kind: AcceleratorKind, sources: list[tuple[Path, SourceLocation]], owner: str
 ) -> None:
-    """Check that each source file is written in a language the accelerator kind uses."""
+    """Check that each source file is text in a language the accelerator kind uses."""
     allowed = SOURCE_SUFFIXES[kind]
     for path, location in sources:
         if path.suffix.lower() not in allowed:
@@ -205,6 +207,13 @@ def check_source_suffixes(
                 f"{owner} is {kind.value}, whose sources end in {', '.join(allowed)}; "
                 f"'{path.name}' does not",
                 location=location,
+            )
+        reason = binary_reason(path) if path.is_file() else None
+        if reason is not None:
+            raise RfcError(
+                f"'{path.name}' is not a source: it is binary, not {kind.value} text ({reason})",
+                location=location,
+                hint=f"name the {kind.value} source files of {owner}",
             )
 
 
@@ -229,14 +238,17 @@ def function_ref(
             location=location,
         )
     if file_text:
-        return FunctionRef(source_file(file_text, base, "reference file", location), name)
-    if default_file is None:
+        file = source_file(file_text, base, "reference file", location)
+    elif default_file is None:
         raise RfcError(
             f"reference '{text}' names no file, and the accelerator has no Python source",
             location=location,
             hint=f"write it as 'file.py:{name}'",
         )
-    return FunctionRef(default_file, name)
+    else:
+        file = default_file
+    check_defines(file, name, f"reference '{text}'", location)
+    return FunctionRef(file, name)
 
 
 #: The keys of ``maxima`` besides ``fields``.

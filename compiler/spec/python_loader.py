@@ -15,6 +15,7 @@ from pathlib import Path
 from rfc.errors import RfcError, SourceLocation
 from rfc.ir.model import Design
 from rfc.spec.python_project import Project
+from rfc.runtime.user_code import running_user_code
 
 
 def load_python_spec(path: Path, display: str | None = None) -> Design:
@@ -37,7 +38,8 @@ def load_python_spec(path: Path, display: str | None = None) -> Design:
     sys.path.insert(0, directory)
     sys.modules[module_name] = module
     try:
-        spec.loader.exec_module(module)
+        with running_user_code(f"the Python spec '{display}'"):
+            spec.loader.exec_module(module)
     except RfcError:
         raise
     except SyntaxError as exc:

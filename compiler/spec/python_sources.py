@@ -14,6 +14,7 @@ from typing import Any
 
 from rfc.errors import RfcError
 from rfc.ir.model import AcceleratorType
+from rfc.runtime.user_code import running_user_code
 
 
 def function_in(path: Path, name: str, accelerator: AcceleratorType, role: str) -> Any:
@@ -51,7 +52,12 @@ def import_file(path: Path, accelerator: AcceleratorType) -> Any:
     directory = str(path.resolve().parent)
     sys.path.insert(0, directory)
     try:
-        spec.loader.exec_module(module)
+        with running_user_code(
+            f"importing '{path.name}' for accelerator '{accelerator.name}'", accelerator.location
+        ):
+            spec.loader.exec_module(module)
+    except RfcError:
+        raise
     except Exception as exc:  # the user's module failed to import: report it, no traceback
         raise RfcError(
             f"importing '{path.name}' for accelerator '{accelerator.name}' raised "

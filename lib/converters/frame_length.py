@@ -200,6 +200,11 @@ def frame_length_circuit(plan: Plan, counts: dict[str, Any], length: Any) -> Any
             terms.append(term)
             if not stage.sequence:
                 constant += stage.fixed  # a CDR string's NUL is there even when it is empty
+        elif isinstance(gap, Constant):  # no run-time length before it: all known now
+            padding = int(gap.val) & (stage.align - 1)
+            pad = Constant(intbv(padding)[3:])
+            after = Constant(intbv((int(gap.val) + 16 - padding - stage.fixed % 8) % 8)[3:])
+            constant += stage.fixed
         else:
             blocks.append(record_stage(gap, after, pad, stage.align, stage.fixed))
             constant += stage.fixed

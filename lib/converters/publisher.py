@@ -27,6 +27,7 @@ from rfc.lib.converters.sources import payload_bases, payload_sources, record_so
 from rfc.lib.converters.steps import End, Loop, Next, Payload, Plan, Record
 from rfc.lib.converters.tables import Kind, tables
 from rfc.lib.converters.wiring import bits_of, follow, loop_counters, select_bit
+from rfc.messages.codec import default_values, encode
 
 
 def publisher_ports(plan: Plan) -> list[str]:
@@ -110,6 +111,8 @@ def rfc_publisher(plan: Plan, **ports: Any) -> Any:
     payload_lanes = [Signal(intbv(0)[8:]) for _ in range(width)]
     payload_bytes = ConcatSignal(*reversed(payload_lanes)) if width > 1 else payload_lanes[0]
     fixed = plan.layout.fixed_size
+    if fixed is None and not length_names:  # every string and sequence stays empty: one size
+        fixed = len(encode(plan.layout, default_values(plan.layout)))
     frame_total = Signal(intbv(0)[COUNTER_BITS:]) if fixed is None else Constant(intbv(fixed)[32:])
     frame_length = ports["frame_length"]
     written = Signal(intbv(0)[COUNTER_BITS:])

@@ -110,11 +110,11 @@ def check_counter_bits(bits: int, transfer: Sequence[int], deadline: Sequence[in
         RfcError: `bits` is too small (or absurdly large).
     """
     needed = max(t + d for t, d in zip(transfer, deadline, strict=True)) + 1
-    if bits > 48 or (1 << (bits - 1)) < needed:
+    if not 1 <= bits <= 48 or (1 << (bits - 1)) < needed:
         raise RfcError(
             f"counter width {bits} bits cannot hold deadlines up to {max(deadline)} cycles and "
-            f"transfers up to {max(transfer)} beats; it must be at most 48 and 2^(bits-1) must "
-            f"be at least {needed}",
+            f"transfers up to {max(transfer)} beats; it must be from 1 to 48 and 2^(bits-1) "
+            f"must be at least {needed}",
             hint=f"leave it out to get {default_counter_bits(transfer, deadline)} bits",
         )
 

@@ -76,15 +76,40 @@ def test_dump_ir_after_an_unknown_pass_is_bad_usage(tmp_path):
     assert not (tmp_path / "out").exists()
 
 
-def test_rebuild_replaces_the_whole_output_directory(tmp_path):
+def test_rebuild_replaces_the_last_builds_files_only(tmp_path):
     out = tmp_path / "out"
     assert run_rfc("build", LISTING_1, "-o", out, "--emit-ir").returncode == 0
-    (out / "stale.vhd").write_text("-- from an older build\n")
+    (out / "notes.vhd").write_text("-- the user's own\n")
     assert run_rfc("build", LISTING_1, "-o", out).returncode == 0
     names = sorted(p.name for p in out.iterdir())
-    assert names == [".rfc-build", "build.sh", "hls", "hw", "report.md", "sw", "vivado"]
+    assert names == [
+        ".rfc-build", "build.sh", "hls", "hw", "notes.vhd", "report.md", "sw", "vivado"
+    ]  # fmt: skip
     assert not (out / "model.yaml").exists()
+    assert (out / "notes.vhd").read_text() == "-- the user's own\n"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["out"]
+
+
+def test_a_spec_kept_inside_the_output_survives_a_rebuild(tmp_path):
+    out = tmp_path / "out"
+    assert run_rfc("build", LISTING_1, "-o", out).returncode == 0
+    inputs = [p for p in LISTING_1.parent.iterdir() if p.is_file()]
+    for given in inputs:
+        (out / given.name).write_bytes(given.read_bytes())
+    result = run_rfc("build", out / LISTING_1.name, "-o", out)
+    assert result.returncode == 0, result.stderr
+    for given in inputs:
+        assert (out / given.name).read_bytes() == given.read_bytes()
+
+
+def test_a_directory_named_like_the_marker_does_not_make_a_directory_rfcs(tmp_path):
+    (tmp_path / ".rfc-build").mkdir()
+    mine = tmp_path / "notes.txt"
+    mine.write_text("keep me\n")
+    result = run_rfc("build", LISTING_1, "-o", tmp_path)
+    assert result.returncode == 1
+    assert "holds files that rfc build did not write; refusing to replace it" in result.stderr
+    assert mine.read_text() == "keep me\n"
 
 
 def test_build_never_replaces_a_directory_it_did_not_write(tmp_path):

@@ -67,6 +67,8 @@ def test_table_output_names_the_figures():
         (("-a", "LST", "-n", "0"), "between 1 and 1024 inputs, not 0"),
         (("-a", "LST", "-n", "4", "--deadline", "0"), "at least 1 cycle"),
         (("-a", "LRU(LST:1,LST:1)", "-n", "4"), "must share the 4 inputs"),
+        (("-a", "LOEDF", "-n", "2", "--counter-bits", "0"), "counter width 0 bits cannot hold"),
+        (("-a", "LST", "-n", "2", "--counter-bits", "-3"), "it must be from 1 to 48"),
     ],
 )
 def test_bad_input_is_one_message_and_exit_1(args, message):
@@ -79,3 +81,19 @@ def test_bad_input_is_one_message_and_exit_1(args, message):
 
 def test_missing_options_are_bad_usage():
     assert run_rfc("sched", "synth", "-a", "LRU").returncode == 2
+
+
+def test_output_that_is_a_file_or_a_users_directory_is_refused_before_synthesis(tmp_path):
+    (tmp_path / "file.txt").write_text("mine")
+    (tmp_path / "mine").mkdir()
+    (tmp_path / "mine" / "notes.txt").write_text("mine")
+    for output, message in (
+        ("file.txt", "output 'file.txt' exists and is not a directory"),
+        ("mine", "output directory 'mine' holds files that rfc sched synth did not write"),
+    ):
+        result = run_rfc("sched", "synth", "-a", "LRU", "-n", "2", "-o", output, cwd=tmp_path)
+        assert result.returncode == 1
+        assert message in result.stderr
+        assert "Traceback" not in result.stderr
+    assert (tmp_path / "file.txt").read_text() == "mine"
+    assert [p.name for p in (tmp_path / "mine").iterdir()] == ["notes.txt"]

@@ -8,10 +8,12 @@ the real command line from the catalogue folder, as a user would.
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 
 import pytest
 
+from rfc.cli import main
 from tests.support.cli import run_rfc
 
 CATALOGUE = Path(__file__).parent / "catalogue"
@@ -43,3 +45,16 @@ def test_bad_spec_gives_its_pinned_message(path, tmp_path):
     assert "Traceback" not in result.stderr
     assert not output.exists()
     assert list(tmp_path.iterdir()) == []  # no staging folder left behind either
+
+
+@pytest.mark.parametrize("path", CASES, ids=[p.name for p in CASES])
+def test_check_rejects_it_as_build_does(path, monkeypatch, capsys):
+    """`rfc check` (the real entry point, in process for speed) prints build's pinned message."""
+    monkeypatch.chdir(CATALOGUE)
+    monkeypatch.setattr(sys, "argv", ["rfc", "check", path.name])
+    with pytest.raises(SystemExit) as exit_status:
+        main()
+    assert exit_status.value.code == 1
+    captured = capsys.readouterr()
+    assert captured.err == expected_stderr(path)
+    assert captured.out == ""

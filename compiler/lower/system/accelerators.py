@@ -36,6 +36,7 @@ from rfc.passes.check_hardware import (
     takes_interfaces,
     vhdl_entity,
 )
+from rfc.runtime.user_code import running_user_code
 
 #: The Vitis HLS cores' control ports (``ap_ctrl_hs``).
 _HLS_CONTROL = (
@@ -132,7 +133,22 @@ def _myhdl(
     if takes_interfaces(accelerator, function, signatures):
         function = typed_block(function, signatures, f"{name}_interfaces")
     signals = [_signal_port(d) for d in declared]
-    component = convert(name, signals, function, directory, f"MyHDL accelerator {accelerator.name}")
+    try:
+        with running_user_code(f"converting MyHDL accelerator '{accelerator.name}'"):
+            component = convert(
+                name, signals, function, directory, f"MyHDL accelerator {accelerator.name}"
+            )
+    except RfcError:
+        raise
+    except Exception as exc:  # the user's block failed to elaborate or convert: say where
+        sources = ", ".join(p.name for p in accelerator.sources) or "its source"
+        raise RfcError(
+            f"MyHDL accelerator '{accelerator.name}' (block '{accelerator.top}' in {sources}) "
+            f"failed to convert: {type(exc).__name__}: {exc}",
+            location=accelerator.location,
+            hint=f"`rfc stub SPEC {accelerator.name} --lang myhdl` prints the interface objects "
+            "it is given, member by member",
+        ) from None
     _check_driven(accelerator, ports, component.files[-1])
     inputs = [
         p

@@ -8,7 +8,6 @@ message that feeds several blocks goes through a handshake fork.
 
 from __future__ import annotations
 
-import re
 from collections import defaultdict
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -33,6 +32,7 @@ from rfc.lower.system.interfaces import MESSAGE
 from rfc.lower.system.top import CLOCK, RESET_N, Interface, Terminal, TopBuilder, wire_connection
 from rfc.messages.limits import Limits
 from rfc.passes.check_hardware import check_buffer_memory
+from rfc.passes.names import snake_identifier as identifier
 from rfc.passes.resolve_scheduler import ResolveScheduler
 
 #: The manager's cell label.
@@ -72,13 +72,6 @@ class SystemHardware:
     def sources(self) -> list[Path]:
         """The VHDL in compile order (the simulator's view)."""
         return list(self.files)
-
-
-def identifier(name: str) -> str:
-    """A VHDL identifier made from a name: snake case, no doubled or trailing underscores."""
-    snake = re.sub(r"(?<=[a-z0-9])(?=[A-Z])", "_", name).lower()
-    cleaned = re.sub(r"_+", "_", re.sub(r"[^a-z0-9_]", "_", snake)).strip("_")
-    return cleaned if cleaned[:1].isalpha() else f"x_{cleaned}"
 
 
 def top_name(design: Design) -> str:

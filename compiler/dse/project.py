@@ -25,10 +25,11 @@ from rfc.ir.model import Design
 from rfc.lib.schedulers.model import tree_of
 from rfc.lib.schedulers.spec import AnySchedulerSpec, parse_scheduler
 
-#: Shortest and longest simulation of a project, in cycles.
-MIN_CYCLES, MAX_CYCLES = 10_000, 200_000
-#: Periods of the slowest publisher simulated (within the bounds above).
-PERIODS_SIMULATED = 20
+#: Shortest simulation of a project, in cycles.
+MIN_CYCLES = 10_000
+#: Messages the slowest publisher sends within the simulated horizon (at least `MIN_CYCLES`),
+#: so that every task set is ranked on enough messages whatever its periods.
+MESSAGES_RANKED = 10
 
 
 @dataclass(frozen=True)
@@ -39,6 +40,8 @@ class ProjectTraffic:
     transfer: tuple[int, ...]
     period: tuple[int, ...]
     deadline: tuple[int, ...]
+    horizon: int | None = None
+    """Cycles to simulate, when the user chose them (``rfc dse --horizon``)."""
 
     @property
     def n(self) -> int:
@@ -52,12 +55,19 @@ class ProjectTraffic:
 
     @property
     def cycles(self) -> int:
-        """Simulated cycles: `PERIODS_SIMULATED` periods of the slowest publisher, bounded."""
-        return min(MAX_CYCLES, max(MIN_CYCLES, PERIODS_SIMULATED * max(self.period)))
+        """Simulated cycles: the horizon chosen, else `MESSAGES_RANKED` slowest periods."""
+        if self.horizon is not None:
+            return self.horizon
+        return max(MIN_CYCLES, MESSAGES_RANKED * max(self.period))
+
+    @property
+    def messages(self) -> tuple[int, ...]:
+        """Messages each publisher releases within the simulated cycles."""
+        return tuple(-(-self.cycles // period) for period in self.period)
 
 
-def project_traffic(design: Design) -> ProjectTraffic:
-    """The publishers' timing from the holistic model.
+def project_traffic(design: Design, horizon: int | None = None) -> ProjectTraffic:
+    """The publishers' timing from the holistic model, simulated for `horizon` cycles if given.
 
     Raises:
         RfcError: A publisher has no period (the DSE cannot simulate it), or none exists.
@@ -85,6 +95,7 @@ def project_traffic(design: Design) -> ProjectTraffic:
         tuple(i.transfer_beats for i in inputs),
         tuple(int(i.period) for i in inputs),
         tuple(int(i.deadline if i.deadline is not None else i.period) for i in inputs),
+        horizon,
     )
 
 
@@ -142,14 +153,29 @@ def recommend(
     design: Design,
     objective: Sequence[Criterion],
     names: Sequence[str] | None = None,
+    *,
+    horizon: int | None = None,
+    progress: Callable[[int, int], None] | None = None,
 ) -> Recommendation:
     """Rank `names` (default `candidates`) for the project's publishers by `objective`.
+
+    Args:
+        design: The holistic model.
+        objective: The ranking criteria, most important first.
+        names: The schedulers to rank.
+        horizon: Cycles to simulate (default: `MESSAGES_RANKED` periods of the slowest).
+        progress: Called with (candidates simulated, candidates) as the simulation goes.
 
     Raises:
         RfcError: A publisher lacks the timing the simulation needs.
     """
-    traffic = project_traffic(design)
-    evaluated = [evaluate(name, traffic) for name in names or candidates(traffic.n)]
+    traffic = project_traffic(design, horizon)
+    chosen = list(names or candidates(traffic.n))
+    evaluated = []
+    for name in chosen:
+        evaluated.append(evaluate(name, traffic))
+        if progress is not None:
+            progress(len(evaluated), len(chosen))
     ranking = rank(evaluated, objective, _resources(traffic))
     return Recommendation(
         traffic, tuple(objective), tuple(ranking), tuple(reasons(ranking, objective))

@@ -170,3 +170,21 @@ def test_build_uses_the_recommendation(tmp_path):
     report = (tmp_path / "build" / "report.md").read_text()
     assert "## Scheduler: LOEDF" in report
     assert "Chosen by resolve-scheduler: rfc dse:" in report
+
+
+def test_dse_spec_horizon_sets_the_cycles_simulated():
+    result = run_rfc(
+        "dse", EXAMPLES / "sensor_hub" / "SensorHub.yaml", "--horizon", "20000", "--json"
+    )
+    assert result.returncode == 0, result.stderr
+    document = json.loads(result.stdout)
+    assert document["cycles"] == 20_000
+    assert [p["messages"] for p in document["publishers"]] == [
+        -(-20_000 // p["period"]) for p in document["publishers"]
+    ]
+
+
+def test_dse_horizon_without_spec_is_refused():
+    result = run_rfc("dse", "--horizon", "20000", "--n", "2")
+    assert result.returncode == 1
+    assert "--horizon sets how long a project is simulated" in result.stderr

@@ -3,10 +3,12 @@
 from __future__ import annotations
 
 import sys
+from contextlib import AbstractContextManager, nullcontext
 from pathlib import Path
 from typing import Annotated
 
 import typer
+from rich.console import Console
 
 from rfc.ir.model import BlockKind, Design
 
@@ -85,10 +87,19 @@ def build(
 
     design = compile_spec(str(spec), after=dump, pipeline=BUILD_PIPELINE)
     options = BuildOptions(emit_ir=emit_ir, estimate=estimate, hardware=not no_hardware)
-    artifacts = lower(design, options, spec.read_text(encoding="utf-8"))
+    with _working("estimating the logic with Yosys" if estimate else None):
+        artifacts = lower(design, options, spec.read_text(encoding="utf-8"))
     write_artifacts(artifacts, output, str(output))
     names = ", ".join(a.path for a in artifacts)
     print(f"built {design.project.name} into {output}: {names}", file=sys.stderr)
+
+
+def _working(what: str | None) -> AbstractContextManager[object]:
+    """A spinner on stderr while a long step runs (at a terminal, when `what` names one)."""
+    console = Console(stderr=True, highlight=False)
+    if what is None or not console.is_terminal:
+        return nullcontext()
+    return console.status(what, spinner="dots")
 
 
 def _summary(design: Design) -> str:

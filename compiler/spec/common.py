@@ -8,6 +8,9 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
 from pathlib import Path
 
 from rfc.errors import RfcError, SourceLocation, did_you_mean
@@ -156,10 +159,24 @@ def positive(value: int, what: str, location: SourceLocation) -> int:
     return value
 
 
+#: Set while `rfc stub` reads a spec whose accelerator sources are not written yet.
+_SOURCES_MAY_BE_MISSING: ContextVar[bool] = ContextVar("sources_may_be_missing", default=False)
+
+
+@contextmanager
+def sources_may_be_missing() -> Iterator[None]:
+    """Accept source files that do not exist yet (to print their skeletons), in this context."""
+    token = _SOURCES_MAY_BE_MISSING.set(True)
+    try:
+        yield
+    finally:
+        _SOURCES_MAY_BE_MISSING.reset(token)
+
+
 def source_file(text: str, base: Path, what: str, location: SourceLocation) -> Path:
     """Resolve a path written in the spec against the spec's directory; it must exist."""
     path = (base / str(text)).resolve()
-    if not path.exists():
+    if not path.exists() and not (what == "source file" and _SOURCES_MAY_BE_MISSING.get()):
         raise RfcError(
             f"{what} '{text}' does not exist",
             location=location,

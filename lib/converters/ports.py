@@ -1,4 +1,10 @@
-"""The ports of a converter: accelerator side (named from field paths) and DMA side.
+"""The message signature: the ports of a message on a converter or an accelerator port.
+
+This module is the one contract between the generated blocks and the accelerators: every
+generator (converters, wrappers, top level, HLS header, stubs, interface checks) reads the
+ports it lists, and no other module spells a port name. Each `Port` carries its flat HDL name
+and its *member*: where it sits in the interface object that MyHDL accelerators receive
+(``("roi", "x_offset")``, ``("vertex_indices", 2)``, ``("valid",)``).
 
 Conventions (docs/converters.md has the full story):
 
@@ -17,17 +23,28 @@ Conventions (docs/converters.md has the full story):
 
 The publisher has the same names with directions mirrored; it reads neither ``S_tkeep``,
 ``S_tlast`` nor ``Q_last``, so it does not declare them.
+
+An accelerator port ``p`` has the same ports, mirrored, each prefixed with ``p_``; the message
+handshake ``msg_valid``/``msg_ready`` becomes ``p_valid``/``p_ready`` (`accelerator_signature`).
+Members use the ROS field names: a field that is a Python keyword gets a trailing underscore
+(``from_``), a string or primitive sequence is an object with ``length``, ``data``, ``keep``,
+``valid``, ``ready``, ``last``, a sequence of messages an object with ``length``, ``valid``,
+``ready``, ``last`` and the element's fields.
 """
 
 from __future__ import annotations
 
+import keyword
 from collections.abc import Iterator
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from enum import StrEnum
 
 from rfc.errors import RfcError
 from rfc.lib.converters.naming import is_identifier
 from rfc.lib.converters.steps import ROOT, Loop, Payload, Plan, Record, SlotRole
+
+#: Index of the message's own channel in `Plan.channels`.
+ROOT_CHANNEL = 0
 
 #: Bits of the error counter and of the frame-length port.
 COUNTER_BITS = 32
@@ -82,6 +99,8 @@ class Port:
         path: Field path it carries (``header.stamp.sec``, ``transforms.child_frame_id``), or
             None for handshakes and DMA-side ports.
         ros_type: ROS type of the value (``float64``, ``string``, ``uint8[]``), or None.
+        member: Where the port sits in the message's interface object (attribute names and
+            list indices), empty for DMA-side ports.
     """
 
     name: str
@@ -91,6 +110,7 @@ class Port:
     group: str = ""
     path: str | None = None
     ros_type: str | None = None
+    member: tuple[str | int, ...] = ()
 
 
 def count_bits(maximum: int) -> int:
@@ -112,16 +132,19 @@ def _accelerator_ports(plan: Plan, side: Side) -> Iterator[Port]:
     subscriber = side is Side.SUBSCRIBER
     out, into = (Direction.OUT, Direction.IN) if subscriber else (Direction.IN, Direction.OUT)
     channels = {c.index: c for c in plan.channels}
+    # Member prefix of each channel's record: () for the message, the sequence's for elements.
+    members: dict[int, tuple[str | int, ...]] = {ROOT_CHANNEL: ()}
+    string_elements: set[int] = set()
 
-    def handshake(name: str, element: bool) -> Iterator[Port]:
-        yield Port(f"{name}_valid", 1, out, PortRole.VALID, name)
-        yield Port(f"{name}_ready", 1, into, PortRole.READY, name)
+    def handshake(name: str, member: tuple[str | int, ...], element: bool) -> Iterator[Port]:
+        yield Port(f"{name}_valid", 1, out, PortRole.VALID, name, member=(*member, "valid"))
+        yield Port(f"{name}_ready", 1, into, PortRole.READY, name, member=(*member, "ready"))
         if subscriber and element:
-            yield Port(f"{name}_last", 1, out, PortRole.LAST, name)
+            yield Port(f"{name}_last", 1, out, PortRole.LAST, name, member=(*member, "last"))
         elif subscriber:
-            yield Port(f"{name}_error", 1, out, PortRole.ERROR, name)
+            yield Port(f"{name}_error", 1, out, PortRole.ERROR, name, member=(*member, "error"))
 
-    yield from handshake(ROOT, element=False)
+    yield from handshake(ROOT, (), element=False)
     for step in plan.steps:
         if isinstance(step, Record):
             group = channels[step.channel].name
@@ -137,10 +160,13 @@ def _accelerator_ports(plan: Plan, side: Side) -> Iterator[Port]:
                         group,
                         _path(plan, step.channel, leaf.path),
                         leaf.ros_type,
+                        (*members[step.channel], *_attributes(leaf.steps)),
                     )
         elif isinstance(step, Payload) and step.stream and step.length_port:
             role = PortRole.LENGTH if step.field.kind.value == "string" else PortRole.COUNT
             group = channels[step.channel].name
+            own = ("item",) if step.channel in string_elements else _attributes(step.field.steps)
+            member = (*members[step.channel], *own)
             yield Port(
                 step.length_port,
                 count_bits(step.maximum),
@@ -149,9 +175,16 @@ def _accelerator_ports(plan: Plan, side: Side) -> Iterator[Port]:
                 group,
                 step.path,
                 step.field.ros_type,
+                (*member, "length"),
             )
-            yield from _stream(step, plan.width, out, into, subscriber)
-        elif isinstance(step, Loop) and step.count_port:
+            yield from _stream(step, plan.width, out, into, subscriber, member)
+        elif isinstance(step, Loop):
+            member = (*members[step.channel], *_attributes(step.field.steps))
+            members[step.element_channel] = member
+            if step.field.element is None:
+                string_elements.add(step.element_channel)
+            if not step.count_port:
+                continue
             group = channels[step.channel].name
             yield Port(
                 step.count_port,
@@ -161,22 +194,42 @@ def _accelerator_ports(plan: Plan, side: Side) -> Iterator[Port]:
                 group,
                 step.path,
                 step.field.ros_type,
+                (*member, "length"),
             )
-            yield from handshake(channels[step.element_channel].name, element=True)
+            yield from handshake(channels[step.element_channel].name, member, element=True)
+
+
+def _attributes(steps: tuple[str | int, ...]) -> tuple[str | int, ...]:
+    """Member steps of a field path: Python keywords get a trailing underscore (PEP 8)."""
+    return tuple(
+        f"{step}_" if isinstance(step, str) and keyword.iskeyword(step) else step for step in steps
+    )
 
 
 def _stream(
-    payload: Payload, width: int, out: Direction, into: Direction, subscriber: bool
+    payload: Payload,
+    width: int,
+    out: Direction,
+    into: Direction,
+    subscriber: bool,
+    member: tuple[str | int, ...],
 ) -> Iterator[Port]:
     name = payload.stream or ""
     beat = stream_bytes(payload, width)
-    yield Port(f"{name}_tdata", 8 * beat, out, PortRole.TDATA, name, payload.path)
+    path = payload.path
+
+    def port(suffix: str, bits: int, direction: Direction, role: PortRole, attribute: str) -> Port:
+        return Port(
+            f"{name}_{suffix}", bits, direction, role, name, path, None, (*member, attribute)
+        )
+
+    yield port("tdata", 8 * beat, out, PortRole.TDATA, "data")
     if subscriber:
-        yield Port(f"{name}_tkeep", beat, out, PortRole.TKEEP, name, payload.path)
-    yield Port(f"{name}_tvalid", 1, out, PortRole.TVALID, name, payload.path)
-    yield Port(f"{name}_tready", 1, into, PortRole.TREADY, name, payload.path)
+        yield port("tkeep", beat, out, PortRole.TKEEP, "keep")
+    yield port("tvalid", 1, out, PortRole.TVALID, "valid")
+    yield port("tready", 1, into, PortRole.TREADY, "ready")
     if subscriber:
-        yield Port(f"{name}_tlast", 1, out, PortRole.TLAST, name, payload.path)
+        yield port("tlast", 1, out, PortRole.TLAST, "last")
 
 
 def _path(plan: Plan, channel: int, leaf_path: str) -> str:
@@ -210,6 +263,40 @@ def dma_ports(plan: Plan, side: Side) -> tuple[Port, ...]:
     return tuple(ports)
 
 
+def accelerator_port_name(port: str, converter_port: Port) -> str:
+    """The accelerator's flat name of a converter-side port.
+
+    ``q`` + ``x`` → ``q_x``; the message's own handshake drops its ``msg`` (``msg_valid`` →
+    ``q_valid``).
+    """
+    if converter_port.group == ROOT and converter_port.role in _MESSAGE_HANDSHAKE:
+        return f"{port}_{converter_port.name.removeprefix(f'{ROOT}_')}"
+    return f"{port}_{converter_port.name}"
+
+
+_MESSAGE_HANDSHAKE = frozenset({PortRole.VALID, PortRole.READY, PortRole.ERROR})
+
+
+def accelerator_signature(plan: Plan, side: Side, port: str) -> tuple[Port, ...]:
+    """The ports of accelerator port `port` that a converter of `plan` feeds or is fed by.
+
+    They are the converter's accelerator-side ports mirrored and prefixed with the port's name
+    (`accelerator_port_name`); the subscriber's ``msg_error`` stays with the converter, which
+    drops malformed frames before an accelerator sees them.
+
+    Args:
+        plan: The converter's plan.
+        side: The converter: a subscriber feeds an input port, a publisher an output port.
+        port: The accelerator's port name.
+    """
+    mirrored = {Direction.IN: Direction.OUT, Direction.OUT: Direction.IN}
+    return tuple(
+        replace(p, name=accelerator_port_name(port, p), direction=mirrored[p.direction])
+        for p in ports_of(plan, side)
+        if not (p.role is PortRole.ERROR and p.group == ROOT)
+    )
+
+
 def check_names(plan: Plan) -> None:
     """Refuse port names that are not HDL identifiers or that two fields share.
 
@@ -235,6 +322,30 @@ def check_names(plan: Plan) -> None:
                 hint=f"exclude '{port.path or first}'",
             )
         seen.setdefault(key, what)
+    _check_members(plan)
+
+
+def _check_members(plan: Plan) -> None:
+    """Refuse fields whose interface-object member is a handshake's (``valid``, ``length`` ...)."""
+    owners: dict[tuple[str | int, ...], Port] = {}
+    for port in ports_of(plan, Side.SUBSCRIBER):
+        other = owners.setdefault(port.member, port)
+        if other is port:
+            continue
+        field, handshake = (port, other) if port.role is PortRole.FIELD else (other, port)
+        attribute = ".".join(str(step) for step in port.member)
+        raise RfcError(
+            f"field '{field.path}' of {plan.layout.display_name} would be the member "
+            f"'{attribute}' of the accelerator's interface object, which is "
+            f"{_role(handshake)}",
+            hint=f"exclude '{field.path}' from the accelerator's port",
+        )
+
+
+def _role(port: Port) -> str:
+    if port.role is PortRole.FIELD:
+        return f"field '{port.path}'"
+    return f"the {port.role.value} of the {'message' if port.group == ROOT else port.group}"
 
 
 def _describe(what: str) -> str:

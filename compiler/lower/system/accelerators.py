@@ -22,6 +22,7 @@ from rfc.ir.model import AcceleratorKind, AcceleratorType, Block
 from rfc.ir.model import Port as ModelPort
 from rfc.lib.converters.ports import Direction, Port, PortRole
 from rfc.lib.hls.adapter import AdapterShape
+from rfc.lib.interface import typed_block
 from rfc.lower.hls_signature import HlsArgument, read_top_function
 from rfc.lower.netlist import EntityDecl, Mode, PortDecl
 from rfc.lower.system.components import Component, adapter_component, convert
@@ -121,8 +122,10 @@ def _myhdl(
 ) -> AcceleratorHardware:
     function = _block_function(accelerator)
     declared = _convention(ports)
-    _check_signature(accelerator, function, [d.name for d in declared])
     name = entity_name(accelerator)
+    if _takes_interfaces(accelerator, function, ports, [d.name for d in declared]):
+        signatures = {port: tuple(pin.signal for pin in pins) for port, pins in ports.items()}
+        function = typed_block(function, signatures, f"{name}_interfaces")
     signals = [_signal_port(d) for d in declared]
     component = convert(name, signals, function, directory, f"MyHDL accelerator {accelerator.name}")
     inputs = [
@@ -149,32 +152,51 @@ def _block_function(accelerator: AcceleratorType) -> Any:
     return getattr(definition, "block_function", None) or function
 
 
-def _check_signature(accelerator: AcceleratorType, function: Any, expected: list[str]) -> None:
+def _takes_interfaces(
+    accelerator: AcceleratorType,
+    function: Any,
+    ports: Mapping[str, tuple[Pin, ...]],
+    flat: list[str],
+) -> bool:
+    """Whether the block takes interface objects (one argument per port) or flat ports.
+
+    Raises:
+        RfcError: It has the arguments of neither form.
+    """
     plain = getattr(function, "func", function)  # MyHDL's @block keeps the function in .func
     try:
         parameters = inspect.signature(plain).parameters
     except (TypeError, ValueError):
-        return
+        return False
+    typed = [CLOCK, RESET, *ports]
     keywords = any(p.kind is inspect.Parameter.VAR_KEYWORD for p in parameters.values())
     required = [
         n
         for n, p in parameters.items()
         if p.default is inspect.Parameter.empty and p.kind is not inspect.Parameter.VAR_KEYWORD
     ]
-    missing = [] if keywords else [n for n in expected if n not in parameters]
-    extra = [n for n in required if n not in expected]
-    if missing or extra:
-        problems = []
-        if missing:
-            problems.append(f"it lacks {', '.join(missing)}")
-        if extra:
-            problems.append(f"it also needs {', '.join(extra)}, which rfc does not provide")
-        raise RfcError(
-            f"MyHDL block '{plain.__name__}' of accelerator '{accelerator.name}' does not have "
-            f"the ports of its messages: {'; '.join(problems)}",
-            location=accelerator.location,
-            hint=f"declare it as {plain.__name__}({', '.join(expected)}) (docs/accelerators.md)",
-        )
+    if all(n in parameters for n in typed) and all(n in typed for n in required):
+        return True
+    missing = [] if keywords else [n for n in flat if n not in parameters]
+    extra = [n for n in required if n not in flat]
+    if not missing and not extra:
+        return False
+    if any(n in parameters for n in ports):  # meant as interface objects
+        missing = [n for n in typed if n not in parameters]
+        extra = [n for n in required if n not in typed]
+    problems = []
+    if missing:
+        problems.append(f"it lacks {', '.join(missing)}")
+    if extra:
+        problems.append(f"it also needs {', '.join(extra)}, which rfc does not provide")
+    raise RfcError(
+        f"MyHDL block '{plain.__name__}' of accelerator '{accelerator.name}' does not have "
+        f"the ports of its messages: {'; '.join(problems)}",
+        location=accelerator.location,
+        hint=f"declare it as {plain.__name__}({', '.join(typed)}) taking one interface object "
+        f"per message port (`rfc stub SPEC {accelerator.name} --lang myhdl` prints a skeleton), "
+        f"or with flat ports as {plain.__name__}({', '.join(flat)}) (docs/accelerators.md)",
+    )
 
 
 def _signal_port(declared: PortDecl) -> Port:

@@ -1,11 +1,9 @@
-"""How an accelerator's ports are named: rfc's accelerator convention.
+"""An accelerator's message pins: the message signature of each port, with netlist declarations.
 
-An accelerator port ``p`` carrying a message has the ports a converter of that message has on
-its accelerator side (`rfc.lib.converters.plan.accelerator_ports`), mirrored, each prefixed with
-``p_``; the message handshake ``msg_valid``/``msg_ready`` becomes ``p_valid``/``p_ready``. An
-input port is fed as a subscriber converter feeds it (it has no ``msg_error``); an output port
-feeds a publisher converter. So ``q: geometry_msgs/Quaternion`` in gives ``q_x`` … ``q_w``,
-``q_valid``, ``q_ready``. docs/accelerators.md shows an example.
+The names and members come from the one contract, `rfc.lib.converters.ports`
+(`accelerator_signature`): an input port ``q`` of geometry_msgs/Quaternion gives ``q_x`` …
+``q_w``, ``q_valid``, ``q_ready``. Each pin also keeps its converter-side name, by which the top
+level joins it to a converter. docs/accelerators.md shows examples.
 """
 
 from __future__ import annotations
@@ -14,14 +12,22 @@ from dataclasses import dataclass
 
 from rfc.ir.model import Direction as PortDirection
 from rfc.ir.model import Port as ModelPort
-from rfc.lib.converters.plan import accelerator_ports
-from rfc.lib.converters.ports import Direction, Port, PortRole, Side
+from rfc.lib.converters.plan import plan
+from rfc.lib.converters.ports import (
+    Direction,
+    Port,
+    PortRole,
+    Side,
+    accelerator_signature,
+    ports_of,
+)
+from rfc.lib.converters.steps import ROOT
 from rfc.lib.converters.toplevel import WIRES
 from rfc.lower.netlist import Mode, PortDecl
 from rfc.messages.limits import Limits
 
 #: The converter-side name of the message handshake.
-MESSAGE = "msg"
+MESSAGE = ROOT
 
 
 @dataclass(frozen=True)
@@ -33,12 +39,14 @@ class Pin:
         port: The port as the entity that has it declares it.
         role: What it carries.
         group: Its handshake group on the converter (``msg``, a sub-stream, an element channel).
+        signal: The accelerator-side port of the signature (name, width, member).
     """
 
     role_name: str
     port: PortDecl
     role: PortRole
     group: str
+    signal: Port
 
 
 def is_wire(port: Port) -> bool:
@@ -53,13 +61,6 @@ def declaration(port: Port, name: str | None = None, mirrored: bool = False) -> 
     return PortDecl(name or port.name, mode, port.bits, is_wire(port))
 
 
-def accelerator_pin_name(port_name: str, role_name: str) -> str:
-    """The accelerator's port for a converter-side name (``q`` + ``msg_valid`` → ``q_valid``)."""
-    if role_name.startswith(f"{MESSAGE}_"):
-        return f"{port_name}_{role_name.removeprefix(f'{MESSAGE}_')}"
-    return f"{port_name}_{role_name}"
-
-
 def accelerator_pins(port: ModelPort, width: int, limits: Limits) -> tuple[Pin, ...]:
     """The pins of one accelerator port, in declaration order.
 
@@ -70,11 +71,7 @@ def accelerator_pins(port: ModelPort, width: int, limits: Limits) -> tuple[Pin, 
     """
     assert port.layout is not None
     side = Side.SUBSCRIBER if port.direction is PortDirection.IN else Side.PUBLISHER
-    pins = []
-    for converter_port in accelerator_ports(port.layout, width, side, limits):
-        if converter_port.role is PortRole.ERROR and converter_port.group == MESSAGE:
-            continue  # the subscriber drops malformed frames; the accelerator never sees them
-        name = accelerator_pin_name(port.name, converter_port.name)
-        decl = declaration(converter_port, name, mirrored=True)
-        pins.append(Pin(converter_port.name, decl, converter_port.role, converter_port.group))
-    return tuple(pins)
+    chosen = plan(port.layout, width, limits)
+    signature = accelerator_signature(chosen, side, port.name)
+    names = {p.member: p.name for p in ports_of(chosen, side)}
+    return tuple(Pin(names[s.member], declaration(s), s.role, s.group, s) for s in signature)

@@ -125,6 +125,7 @@ def test_a_myhdl_block_without_the_message_ports_is_refused_with_the_signature_t
     message = refused(spec, tmp_path / "build")
     assert "it lacks in0_valid, in0_ready, in0_x" in message
     assert "it also needs a, b" in message
+    assert "acc(clk, rst, in0, out0) taking one interface object per message port" in message
     assert "acc(clk, rst, in0_valid, in0_ready, in0_x, in0_y, in0_z, out0_valid" in message
 
 

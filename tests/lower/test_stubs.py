@@ -1,0 +1,99 @@
+"""`rfc stub`: skeletons typed from the message signatures build as written.
+
+A user declares an accelerator in the spec, has `rfc stub` write its source, and builds: the
+skeleton must have exactly the ports `rfc build` checks, for every form (MyHDL interface
+objects, VHDL flat ports, a ROS-SW function), and GHDL must accept the logic.
+"""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+from rfc.toolchain import analyze
+from tests.support.cli import run_rfc
+
+ROOT = Path(__file__).resolve().parents[2]
+FRANKA = """
+project: {{name: Franka, middleware: ROS, busWidth: 64, msg_paths: [{msgs}]}}
+accelerators:
+  - name: Kinematics
+    type: {kind}
+    sources: ./{source}
+    interface:
+      input: [{{name: state, message: franka_msgs/FrankaState,
+                include: [header, q, q_d, O_T_EE, O_T_EE_d, F_T_EE]}}]
+      output: [{{name: pose, message: geometry_msgs/PoseStamped}}]
+blocks:
+  - {{name: state_sub, type: ROS>accelerator, message: franka_msgs/FrankaState,
+     topic: /franka_state, outgoing: [{{name: fk}}]}}
+  - {{name: fk, type: Kinematics, outgoing: [{{name: pose_pub}}]}}
+  - {{name: pose_pub, type: accelerator>ROS, message: geometry_msgs/PoseStamped, topic: /pose}}
+"""
+
+
+def franka_spec(folder: Path, kind: str, source: str) -> Path:
+    spec = folder / "franka.yaml"
+    spec.write_text(FRANKA.format(msgs=ROOT / "examples/franka/msg", kind=kind, source=source))
+    return spec
+
+
+def stub(spec: Path, accelerator: str, language: str) -> str:
+    result = run_rfc("stub", spec, accelerator, "--lang", language)
+    assert result.returncode == 0, result.stderr
+    return result.stdout
+
+
+def built_logic(spec: Path, out: Path) -> list[Path]:
+    result = run_rfc("build", spec, "-o", out)
+    assert result.returncode == 0, result.stderr
+    hw = out / "hw"
+    return [hw / name for name in (hw / "files.txt").read_text().split()]
+
+
+def test_the_myhdl_skeleton_takes_the_franka_state_as_one_argument_and_builds(tmp_path):
+    spec = franka_spec(tmp_path, "MyHDL", "kinematics.py")  # the source does not exist yet
+    text = stub(spec, "Kinematics", "myhdl")
+    function = next(node for node in ast.parse(text).body if isinstance(node, ast.FunctionDef))
+    assert [a.arg for a in function.args.args] == ["clk", "rst", "state", "pose"]
+    for member in ("state.q[6]", "state.O_T_EE[15]", "state.header.frame_id.data",
+                   "state.header.frame_id.length", "pose.pose.orientation.w"):  # fmt: skip
+        assert f"{member}: " in text
+    (tmp_path / "kinematics.py").write_text(text)
+    files = built_logic(spec, tmp_path / "build")
+    analyze(files, tmp_path / "work", "franka_pl")
+
+
+def test_the_vhdl_skeleton_has_the_ports_the_build_checks(tmp_path):
+    spec = franka_spec(tmp_path, "VHDL", "kinematics.vhd")
+    text = stub(spec, "fk", "vhdl")  # a block names its type too
+    assert "state_q_6 : in std_logic_vector(63 downto 0);  -- state.q[6]: float64" in text
+    assert "pose_ready : in std_logic;" in text
+    (tmp_path / "kinematics.vhd").write_text(text)
+    files = built_logic(spec, tmp_path / "build")
+    analyze(files, tmp_path / "work", "franka_pl")
+
+
+def test_the_python_skeleton_is_a_ros_sw_function_that_returns_its_output(tmp_path):
+    spec = franka_spec(tmp_path, "ROS-SW", "kinematics.py")
+    text = stub(spec, "Kinematics", "python")
+    namespace: dict = {}
+    exec(compile(text, "kinematics.py", "exec"), namespace)
+    pose = namespace["Kinematics"](None)
+    assert pose.__msgtype__ == "geometry_msgs/msg/PoseStamped"
+    assert pose.pose.orientation.w == 0.0
+
+
+@pytest.mark.parametrize(
+    ("name", "hint"),
+    [("Kinematic", "did you mean 'Kinematics'"), ("xyz", "accelerator types: Kinematics")],
+)
+def test_an_unknown_accelerator_is_an_error_with_the_names_there_are(tmp_path, name, hint):
+    spec = franka_spec(tmp_path, "MyHDL", "kinematics.py")
+    result = run_rfc("stub", spec, name)
+    assert result.returncode == 1
+    assert "Traceback" not in result.stderr
+    assert f"no accelerator type or accelerator block '{name}'" in result.stderr
+    assert hint in result.stderr

@@ -61,7 +61,7 @@ def wizard(
     with status.status("checking the spec as rfc check does", spinner="dots"):
         written = write_system(system, output)
     for stub in written.stubs:
-        console.print(f"wrote reference stub {stub}")
+        console.print(f"wrote skeleton {stub}")
     console.print(f"wrote {written.spec}; rfc check: ok")
     console.print(
         f"next: rfc build {written.spec}  (then rfc sim {written.spec} --bag IN --out OUT)"

@@ -29,7 +29,11 @@ class PortAnswer:
 
 @dataclass(frozen=True)
 class AcceleratorAnswers:
-    """An accelerator type: its kind, sources and typed ports."""
+    """An accelerator type: its kind, sources and typed ports.
+
+    Attributes:
+        skeleton: Whether to write a skeleton into `sources` (which does not exist yet).
+    """
 
     name: str
     kind: str
@@ -38,6 +42,7 @@ class AcceleratorAnswers:
     reference: str
     inputs: tuple[PortAnswer, ...]
     outputs: tuple[PortAnswer, ...]
+    skeleton: bool = False
 
 
 @dataclass(frozen=True)

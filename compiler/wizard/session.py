@@ -1,7 +1,8 @@
 """The wizard's questions, in order, each with the default that keeps the system valid.
 
 Enter at every prompt gives the starter system: one subscriber of `STARTER_MESSAGE` → one ROS-SW
-pass-through (whose reference stub the wizard writes) → one publisher.
+pass-through (whose reference stub the wizard writes) → one publisher. Accelerators whose source
+files do not exist yet get skeletons (`rfc stub`), when the user agrees.
 """
 
 from __future__ import annotations
@@ -126,13 +127,18 @@ class Session:
                 complete=names,
             )
             function = _snake(type_name)
-            sources = ask("Source file", f"./{function}{_SOURCE_SUFFIX[kind]}", _text)
+            sources = ask("Source file", f"./{function}{_SOURCE_SUFFIX[kind]}", self._source(kind))
+            skeleton = not (self.base / sources).exists() and self.prompter.ask_yes(
+                f"{sources} does not exist yet; write a skeleton there?", True
+            )
             top = ask("Top (function or entity; Enter: the type name)", "", _optional)
-            reference_default = f"{sources}:{function}" if kind == "ROS-SW" else ""
+            reference_default = f"{sources}:{top or type_name}" if kind == "ROS-SW" else ""
             reference = ask("Python reference (file.py:function)", reference_default, _optional)
             block = ask("Block name of this accelerator", f"{function}_acc", _name)
             accelerators.append(
-                AcceleratorAnswers(type_name, kind, sources, top, reference, inputs, outputs)
+                AcceleratorAnswers(
+                    type_name, kind, sources, top, reference, inputs, outputs, skeleton
+                )
             )
             blocks.append(BlockAnswers(block, "accelerator", accelerator=type_name))
             message = outputs[0].message
@@ -166,6 +172,22 @@ class Session:
                 self.prompter.note(f"rfc dse recommends {default}: {reason}")
         choices = ", ".join(common.SCHEDULER_ALGORITHMS)
         return self.prompter.ask(f"Scheduler ({choices})", default, _scheduler)
+
+    def _source(self, kind: str) -> Callable[[str, SourceLocation], str]:
+        """Sources rfc cannot write a skeleton of (HLS) must exist already."""
+
+        def check(text: str, location: SourceLocation) -> str:
+            _text(text, location)
+            if kind == "HLS" and not (self.base / text).is_file():
+                raise RfcError(
+                    f"HLS source '{text}' does not exist (paths are relative to {self.base})",
+                    location=location,
+                    hint="write the C++ function first; rfc writes skeletons of MyHDL, VHDL "
+                    "and ROS-SW accelerators only",
+                )
+            return text
+
+        return check
 
     def _directories(self, text: str, location: SourceLocation) -> tuple[str, ...]:
         found = _list(text)

@@ -5,22 +5,27 @@ from __future__ import annotations
 from rfc.wizard.model import AcceleratorAnswers
 
 
-def reference_stub(accelerator: AcceleratorAnswers) -> str:
-    """Return a module defining the accelerator's reference function.
+def passes_through(accelerator: AcceleratorAnswers) -> bool:
+    """Whether the accelerator runs in software and could pass its one input on as its output."""
+    return (
+        accelerator.kind == "ROS-SW"
+        and bool(accelerator.reference)
+        and len(accelerator.inputs) == len(accelerator.outputs) == 1
+        and accelerator.inputs[0].message == accelerator.outputs[0].message
+    )
 
-    The function takes one rosbags message per input port, in port order (rfc's ROS-SW calling
-    convention). When the first input and output carry the same type it passes the message on,
-    so the system runs end to end before any code is written; otherwise it sends nothing.
+
+def reference_stub(accelerator: AcceleratorAnswers) -> str:
+    """Return a module whose reference function passes the message on (see `passes_through`).
+
+    The function takes one rosbags message per input port (rfc's ROS-SW calling convention), so
+    the system runs end to end before any code is written.
     """
     function = accelerator.reference.rpartition(":")[2]
     arguments = ", ".join(p.name for p in accelerator.inputs)
-    first_in, first_out = accelerator.inputs[0], accelerator.outputs[0]
-    if first_in.message == first_out.message and len(accelerator.outputs) == 1:
-        body = f"    return {first_in.name}"
-        doc = f"Pass the {first_in.message} on unchanged (replace with the accelerator's work)."
-    else:
-        body = "    return None"
-        doc = "Send nothing yet (return one message per output port, in port order)."
+    first_in = accelerator.inputs[0]
+    body = f"    return {first_in.name}"
+    doc = f"Pass the {first_in.message} on unchanged (replace with the accelerator's work)."
     ports = "\n".join(
         f"    {p.name}: {p.message}" for p in (*accelerator.inputs, *accelerator.outputs)
     )

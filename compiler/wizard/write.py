@@ -6,14 +6,14 @@ the error is raised; files that existed before (an accelerator's sources) are ne
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 from rfc.errors import RfcError
 from rfc.ir.model import Design
 from rfc.wizard.emit import to_python, to_yaml
 from rfc.wizard.model import SystemAnswers
-from rfc.wizard.stub import reference_stub
+from rfc.wizard.stub import passes_through, reference_stub
 
 
 @dataclass(frozen=True)
@@ -30,37 +30,68 @@ def spec_text(system: SystemAnswers, spec: Path) -> str:
     return to_python(system) if spec.suffix == ".py" else to_yaml(system)
 
 
-def write_stubs(system: SystemAnswers, base: Path) -> tuple[Path, ...]:
-    """Write the reference stub of every ROS-SW accelerator whose reference file is missing."""
-    written = []
-    for accelerator in system.accelerators:
-        if accelerator.kind != "ROS-SW" or not accelerator.reference:
+def write_stubs(system: SystemAnswers, spec: Path) -> tuple[Path, ...]:
+    """Write the skeleton of every accelerator that asks for one, into its missing source.
+
+    A ROS-SW accelerator whose output is its input's type gets a pass-through reference stub
+    (so the system runs end to end at once); the others get `rfc stub`'s typed skeleton.
+    """
+    from rfc.lower.stubs import StubLanguage, accelerator_stub
+    from rfc.spec.common import sources_may_be_missing
+
+    wanted = [a for a in system.accelerators if a.skeleton]
+    if not wanted:
+        return ()
+    # the references of those accelerators live in the files still to be written
+    draft = replace(
+        system,
+        accelerators=tuple(
+            replace(a, reference="") if a.skeleton else a for a in system.accelerators
+        ),
+    )
+    with sources_may_be_missing():
+        design = _compile(draft, spec, build=False)
+    written: list[Path] = []
+    for accelerator in wanted:
+        path = spec.parent / accelerator.sources
+        if path.exists():
             continue
-        path = base / accelerator.reference.rpartition(":")[0]
-        if path.exists() or path in written:
-            continue
+        if passes_through(accelerator):
+            text = reference_stub(accelerator)
+        else:
+            language = {"ROS-SW": StubLanguage.PYTHON, "VHDL": StubLanguage.VHDL}.get(
+                accelerator.kind, StubLanguage.MYHDL
+            )
+            text = accelerator_stub(design, accelerator.name, language)
         path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_text(reference_stub(accelerator), encoding="utf-8")
+        path.write_text(text, encoding="utf-8")
         written.append(path)
     return tuple(written)
 
 
-def check_draft(system: SystemAnswers, spec: Path) -> Design:
-    """Compile `system` as `rfc build` does, from a draft beside `spec`.
-
-    The draft sits beside the spec so that relative paths hold; it and the stubs written for
-    it are removed again.
-    """
+def _compile(system: SystemAnswers, spec: Path, *, build: bool) -> Design:
+    """Compile `system` from a draft beside `spec` (so relative paths hold), then remove it."""
     from rfc.driver import compile_spec
-    from rfc.passes.pipeline import BUILD_PIPELINE
+    from rfc.passes.pipeline import BUILD_PIPELINE, PIPELINE
 
     draft = spec.with_name(f".rfc-wizard-draft{spec.suffix}")
-    stubs = write_stubs(system, spec.parent)
     try:
         draft.write_text(spec_text(system, spec), encoding="utf-8")
-        return compile_spec(draft, pipeline=BUILD_PIPELINE)
+        return compile_spec(draft, pipeline=BUILD_PIPELINE if build else PIPELINE)
     finally:
-        for path in (draft, *stubs):
+        draft.unlink(missing_ok=True)
+
+
+def check_draft(system: SystemAnswers, spec: Path) -> Design:
+    """Compile `system` as `rfc build` does (scheduler chosen), with its skeletons for a while.
+
+    The draft spec and the skeletons written for it are removed again.
+    """
+    stubs = write_stubs(system, spec)
+    try:
+        return _compile(system, spec, build=True)
+    finally:
+        for path in stubs:
             path.unlink(missing_ok=True)
 
 
@@ -78,7 +109,7 @@ def write_system(system: SystemAnswers, spec: Path) -> Written:
             hint="name the output project.yaml or project.py",
         )
     spec.parent.mkdir(parents=True, exist_ok=True)
-    stubs = write_stubs(system, spec.parent)
+    stubs = write_stubs(system, spec)
     created = (*stubs, spec)
     try:
         spec.write_text(spec_text(system, spec), encoding="utf-8")

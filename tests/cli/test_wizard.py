@@ -138,3 +138,16 @@ def test_a_wrong_replayed_answer_names_its_line_and_writes_nothing(tmp_path):
     assert "did you mean 'geometry_msgs/Quaternion'" in result.stderr
     assert "Traceback" not in result.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == ["answers.txt"]
+
+
+def test_a_myhdl_accelerator_without_source_gets_rfc_stubs_skeleton_and_builds(tmp_path):
+    answers = tmp_path / "answers.txt"
+    answers.write_text("\n" * 14 + "Scale\nMyHDL\n")
+    result = run_rfc("wizard", "--answers", answers, cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert "./scale.py does not exist yet; write a skeleton there? (y/n) [y]: " in result.stdout
+    skeleton = (tmp_path / "scale.py").read_text()
+    shown = run_rfc("stub", tmp_path / "project.yaml", "Scale", "--lang", "myhdl")
+    assert skeleton == shown.stdout
+    build = run_rfc("build", tmp_path / "project.yaml", "-o", tmp_path / "build")
+    assert build.returncode == 0, build.stderr

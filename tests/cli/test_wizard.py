@@ -151,3 +151,15 @@ def test_a_myhdl_accelerator_without_source_gets_rfc_stubs_skeleton_and_builds(t
     assert skeleton == shown.stdout
     build = run_rfc("build", tmp_path / "project.yaml", "-o", tmp_path / "build")
     assert build.returncode == 0, build.stderr
+
+
+def test_with_periods_the_wizard_offers_the_dse_recommendation(tmp_path):
+    answers = tmp_path / "answers.txt"
+    answers.write_text("\n" * 14 + "Scale\nMyHDL\n" + "\n" * 11 + "10 us\n")
+    result = run_rfc("wizard", "--answers", answers, cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    # one publisher in the logic: resolve-scheduler's rule (every algorithm serves it alike)
+    assert "rfc dse recommends PFP: one publisher" in result.stdout
+    assert "[PFP]: " in result.stdout
+    assert "scheduler: PFP" in (tmp_path / "project.yaml").read_text()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["answers.txt", "project.yaml", "scale.py"]

@@ -100,8 +100,9 @@ class Prompter:
         self.console.file.flush()
         try:
             return input(shown)
-        except EOFError:
+        except EOFError:  # input closed: defaults from here on, and no asking again
             sys.stdout.write("\n")
+            self._answers = iter(())
             return ""
 
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import shutil
+import subprocess
 import sys
 from pathlib import Path
 
@@ -163,3 +164,25 @@ def test_with_periods_the_wizard_offers_the_dse_recommendation(tmp_path):
     assert "[PFP]: " in result.stdout
     assert "scheduler: PFP" in (tmp_path / "project.yaml").read_text()
     assert sorted(p.name for p in tmp_path.iterdir()) == ["answers.txt", "project.yaml", "scale.py"]
+
+
+def test_an_existing_spec_is_never_overwritten(tmp_path):
+    (tmp_path / "project.yaml").write_text("mine\n")
+    result = run_rfc("wizard", cwd=tmp_path)
+    assert result.returncode == 1
+    assert "'project.yaml' already exists" in result.stderr
+    assert (tmp_path / "project.yaml").read_text() == "mine\n"
+
+
+def test_closed_input_takes_the_defaults(tmp_path):
+    done = subprocess.run(
+        [sys.executable, "-m", "rfc", "wizard"],
+        cwd=tmp_path,
+        stdin=subprocess.DEVNULL,
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=False,
+    )
+    assert done.returncode == 0, done.stderr
+    assert run_rfc("check", tmp_path / "project.yaml").returncode == 0

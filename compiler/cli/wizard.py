@@ -44,6 +44,11 @@ def wizard(
             f"'{output}' already exists; the wizard writes a new spec",
             hint="choose another file with -o, or remove it",
         )
+    if not output.parent.is_dir():
+        raise RfcError(
+            f"the folder of '{output}' does not exist",
+            hint="create it first, or write the spec elsewhere with -o",
+        )
     console = Console(highlight=False, soft_wrap=True)
     prompter = (
         Prompter.at_terminal(console) if answers is None else Prompter.from_file(answers, console)

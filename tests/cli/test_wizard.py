@@ -121,13 +121,19 @@ def test_the_wizard_rebuilds_listing_1_with_the_examples_holistic_model(tmp_path
     assert compared[1] == 0, compared[0]
 
 
-def test_a_python_spec_from_replayed_answers_checks(tmp_path):
+def test_the_python_and_yaml_forms_of_the_same_answers_give_the_same_model(tmp_path):
     answers = tmp_path / "answers.txt"
-    answers.write_text("Replayed\n")
-    result = run_rfc("wizard", "-o", "project.py", "--answers", answers, cwd=tmp_path)
-    assert result.returncode == 0, result.stderr
-    assert "Project name [Starter]: Replayed" in result.stdout
-    assert run_rfc("check", tmp_path / "project.py").returncode == 0
+    answers.write_text("Replayed\n" + "\n" * 9 + "x, y\n\n5 us\n")  # fields x, y; a period
+    models = []
+    for form in ("py", "yaml"):
+        (tmp_path / form).mkdir()
+        spec = f"{form}/project.{form}"
+        result = run_rfc("wizard", "-o", spec, "--answers", answers, cwd=tmp_path)
+        assert result.returncode == 0, result.stderr
+        assert "Project name [Starter]: Replayed" in result.stdout
+        models.append(model_of(tmp_path / spec, tmp_path / form / "build"))
+    assert models[0] == models[1]
+    assert "include:\n      - x\n      - y" in models[0]
 
 
 def test_a_wrong_replayed_answer_names_its_line_and_writes_nothing(tmp_path):
@@ -172,6 +178,9 @@ def test_an_existing_spec_is_never_overwritten(tmp_path):
     assert result.returncode == 1
     assert "'project.yaml' already exists" in result.stderr
     assert (tmp_path / "project.yaml").read_text() == "mine\n"
+    missing = run_rfc("wizard", "-o", "new/project.yaml", cwd=tmp_path)
+    assert missing.returncode == 1
+    assert "the folder of 'new/project.yaml' does not exist" in missing.stderr
 
 
 def test_closed_input_takes_the_defaults(tmp_path):

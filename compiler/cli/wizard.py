@@ -55,14 +55,16 @@ def wizard(
     )
     base = output.parent
 
+    status = Console(stderr=True, highlight=False)
+
     def recommend(draft: SystemAnswers) -> tuple[str, str]:
-        design = check_draft(draft, output)
+        with status.status("simulating the schedulers with rfc dse", spinner="dots"):
+            design = check_draft(draft, output)
         assert design.infrastructure is not None
         scheduler = design.infrastructure.scheduler
         return scheduler.algorithm, scheduler.reason
 
     system = Session(prompter, base).run(recommend)
-    status = Console(stderr=True, highlight=False)
     with status.status("checking the spec as rfc check does", spinner="dots"):
         written = write_system(system, output)
     for stub in written.stubs:

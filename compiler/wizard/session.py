@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import re
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 from rfc.errors import RfcError, SourceLocation
@@ -72,10 +72,7 @@ class Session:
         )
         draft = SystemAnswers(project, accelerators, blocks, connections)
         scheduler = self._scheduler(draft, recommend)
-        project = ProjectAnswers(
-            name, middleware.value, distro, part, clock, width, msg_paths, scheduler
-        )
-        return SystemAnswers(project, accelerators, blocks, connections)
+        return replace(draft, project=replace(project, scheduler=scheduler))
 
     def _converters(
         self, kind: str, types: MessageTypes, names: list[str], message: str, topic: str

@@ -35,7 +35,8 @@ LISTING_1 = {
     "Publisher name": "euler_pub",
 }
 IN_ORDER = {
-    "Message type": ["geometry_msgs/Quaternion", "geometry_msgs/Point"],
+    # Tab completes from the type store: the common prefix of Quaternion and QuaternionStamped
+    "Message type": ["geometry_msgs/Quatern\t", "geometry_msgs/Point"],
     "Topic": ["/imu/orientation", "/imu/euler"],
 }
 

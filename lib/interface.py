@@ -22,9 +22,10 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from myhdl import Signal, always_comb, block
+from myhdl import Signal, block
 
 from rfc.lib.converters.ports import Direction, Port
+from rfc.lib.converters.wiring import follow
 
 #: A member step: an attribute name or a fixed-array index.
 Step = str | int
@@ -120,21 +121,10 @@ def _container(root: MessageInterface, member: tuple[Step, ...], what: str) -> t
 def array_copies(array: ArrayPins) -> Any:
     """Drive each list element from its input pin, or each output pin from its element."""
     return [
-        copy_signal(pin, element) if into else copy_signal(element, pin)
+        follow(pin, element) if into else follow(element, pin)
         for element, pin, into in zip(array.elements, array.pins, array.inward, strict=True)
         if pin is not None
     ]
-
-
-@block
-def copy_signal(source: Any, destination: Any) -> Any:
-    """Drive `destination` with `source`, combinationally."""
-
-    @always_comb
-    def copy() -> None:
-        destination.next = source
-
-    return copy
 
 
 def typed_block(

@@ -1,18 +1,21 @@
-"""An accelerator that forwards its input message unchanged, for any message type.
+"""Accelerators that forward their input message unchanged, for any message type.
 
-`pass_through` follows rfc's port convention (docs/accelerators.md) for one input port ``in0``
-and one output port ``out0`` of the same type: every pin of ``out0`` is driven by the same pin
-of ``in0`` (fields, lengths, sub-streams), and readys flow back. It takes its ports as
-keywords, so one block serves every message type; name it as a MyHDL accelerator's ``top``.
+`pass_through` takes rfc's flat ports (docs/accelerators.md) for one input port ``in0`` and one
+output port ``out0`` of the same type: every pin of ``out0`` is driven by the same pin of
+``in0`` (fields, lengths, sub-streams), and readys flow back. It takes its ports as keywords,
+so one block serves every message type; name it as a MyHDL accelerator's ``top``.
+`typed_pass_through` does the same on interface objects, member by member.
 """
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from typing import Any
 
 from myhdl import block
 
 from rfc.lib.converters.wiring import follow
+from rfc.lib.interface import MessageInterface
 
 
 @block
@@ -25,3 +28,30 @@ def pass_through(clk: Any, rst: Any, **ports: Any) -> Any:
         partner = ports["in0_" + name.removeprefix("out0_")]
         wires.append(follow(target, partner) if name.endswith("ready") else follow(partner, target))
     return wires
+
+
+@block
+def typed_pass_through(clk: Any, rst: Any, in0: Any, out0: Any) -> Any:
+    """Forward interface object ``in0`` to ``out0``; readys flow back."""
+    return [
+        follow(target, source) if name == "ready" else follow(source, target)
+        for name, source, target in _members(in0, out0)
+    ]
+
+
+def _members(source: Any, target: Any) -> Iterator[tuple[str, Any, Any]]:
+    """Pairs of same-placed signals of two interface objects (what only `source` has is left)."""
+    for name, value in vars(target).items():
+        if name.startswith("_") or not hasattr(source, name):
+            continue
+        yield from _pairs(name, getattr(source, name), value)
+
+
+def _pairs(name: str, source: Any, target: Any) -> Iterator[tuple[str, Any, Any]]:
+    if isinstance(target, MessageInterface):
+        yield from _members(source, target)
+    elif isinstance(target, list):
+        for one, other in zip(source, target, strict=True):
+            yield from _pairs(name, one, other)
+    else:
+        yield name, source, target

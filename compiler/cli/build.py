@@ -61,7 +61,7 @@ def build(
             metavar="PASS",
             help="Print the IR after this pass (repeatable): parse, resolve-types, "
             "check-connections, expand-selections, flatten-messages, derive-infrastructure, "
-            "resolve-scheduler.",
+            "check-hardware, resolve-scheduler.",
         ),
     ] = None,
 ) -> None:

@@ -56,6 +56,8 @@ class Stage(IntEnum):
     """Every block port holds its message layout with the fields it uses selected."""
     DERIVED = 5
     """The infrastructure (ids, DMA, frame-length circuits, scheduler inputs) is derived."""
+    CHECKED = 6
+    """The logic's rules hold: names, accelerator sources, fan-out, block RAM."""
 
 
 class Direction(StrEnum):

@@ -16,7 +16,7 @@ from enum import StrEnum
 from rfc.errors import RfcError, did_you_mean
 from rfc.ir.model import AcceleratorType, Block, Design, Direction
 from rfc.ir.model import Port as ModelPort
-from rfc.lib.converters.ports import PortRole
+from rfc.lib.converters.ports import PortRole, member_text
 from rfc.lower.system.interfaces import Pin, accelerator_pins
 from rfc.messages.rosbags_adapter import MessageTypes
 from rfc.passes.base import types_of
@@ -91,10 +91,7 @@ def _function_name(accelerator: AcceleratorType) -> str:
 
 
 def _member(port: str, pin: Pin) -> str:
-    text = port
-    for step in pin.signal.member:
-        text += f"[{step}]" if isinstance(step, int) else f".{step}"
-    return text
+    return member_text(port, pin.signal.member)
 
 
 def _describe(pin: Pin) -> str:

@@ -8,6 +8,7 @@ from rfc.ir.model import Design
 from rfc.ir.verify import verify
 from rfc.passes.base import Pass
 from rfc.passes.check_connections import CheckConnections
+from rfc.passes.check_hardware import CheckHardware
 from rfc.passes.derive_infrastructure import DeriveInfrastructure
 from rfc.passes.expand_selections import ExpandSelections
 from rfc.passes.flatten_messages import FlattenMessages
@@ -20,6 +21,7 @@ PIPELINE: tuple[Pass, ...] = (
     ExpandSelections(),
     FlattenMessages(),
     DeriveInfrastructure(),
+    CheckHardware(),
 )
 #: `rfc build`'s pipeline: the scheduler left to the DSE is chosen too (`rfc check` skips it).
 BUILD_PIPELINE: tuple[Pass, ...] = (*PIPELINE, ResolveScheduler())

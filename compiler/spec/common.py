@@ -176,7 +176,8 @@ def sources_may_be_missing() -> Iterator[None]:
 def source_file(text: str, base: Path, what: str, location: SourceLocation) -> Path:
     """Resolve a path written in the spec against the spec's directory; it must exist."""
     path = (base / str(text)).resolve()
-    if not path.exists() and not (what == "source file" and _SOURCES_MAY_BE_MISSING.get()):
+    missing_allowed = what in ("source file", "reference file") and _SOURCES_MAY_BE_MISSING.get()
+    if not path.exists() and not missing_allowed:
         raise RfcError(
             f"{what} '{text}' does not exist",
             location=location,

@@ -1,11 +1,11 @@
 """The QuaternionToEuler accelerator as rfc sees it: ROS message ports around the MyHDL core.
 
-`quaternion_to_euler` follows rfc's convention for MyHDL accelerators (docs/accelerators.md):
-``clk`` and ``rst``, then per input port its fields named ``<port>_<field>`` with
-``<port>_valid``/``<port>_ready``, and the same for each output port. It only renames the
-core's ports (`quat_to_euler.quat_to_euler`). `quaternion_to_euler_message` is the same
-computation on ROS messages — the bit-accurate reference — which runs when the accelerator is
-switched to ROS-SW, and which `rfc sim` results are held to.
+`quaternion_to_euler` takes one interface object per message port (docs/accelerators.md):
+``q`` holds the geometry_msgs/Quaternion's fields ``q.x`` … ``q.w`` and its handshake
+``q.valid``/``q.ready``, ``euler`` the geometry_msgs/Point's. It only hands them to the core
+(`quat_to_euler.quat_to_euler`). `quaternion_to_euler_message` is the same computation on ROS
+messages — the bit-accurate reference — which runs when the accelerator is switched to ROS-SW,
+and which `rfc sim` results are held to.
 """
 
 from __future__ import annotations
@@ -20,25 +20,11 @@ from rfc.messages.rosbags_adapter import message_types
 
 
 @block
-def quaternion_to_euler(
-    clk: Any,
-    rst: Any,
-    q_x: Any,
-    q_y: Any,
-    q_z: Any,
-    q_w: Any,
-    q_valid: Any,
-    q_ready: Any,
-    euler_x: Any,
-    euler_y: Any,
-    euler_z: Any,
-    euler_valid: Any,
-    euler_ready: Any,
-) -> Any:
+def quaternion_to_euler(clk: Any, rst: Any, q: Any, euler: Any) -> Any:
     """geometry_msgs/Quaternion q in, geometry_msgs/Point euler out (x roll, y pitch, z yaw)."""
     return quat_to_euler(
-        clk, rst, q_x, q_y, q_z, q_w, q_valid, q_ready,
-        euler_x, euler_y, euler_z, euler_valid, euler_ready,
+        clk, rst, q.x, q.y, q.z, q.w, q.valid, q.ready,
+        euler.x, euler.y, euler.z, euler.valid, euler.ready,
     )  # fmt: skip
 
 

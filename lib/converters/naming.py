@@ -1,13 +1,15 @@
 """Port names from dotted field paths, valid in VHDL and Verilog alike.
 
 ``header.stamp.sec`` becomes ``header_stamp_sec`` and ``pose.covariance[35]`` becomes
-``pose_covariance_35``. A name that is a VHDL or Verilog keyword (``range``, ``type`` ...) gets
-the suffix ``_field``. Names that still cannot be HDL identifiers, or that two fields share, are
-refused by `rfc.lib.converters.plan` with an error naming the fields.
+``pose_covariance_35``. A name that is a VHDL, Verilog or Python keyword (``range``, ``type``,
+``from`` ...; MyHDL names ports after Python parameters) gets the suffix ``_field``. Names that
+still cannot be HDL identifiers, or that two fields share, are refused by
+`rfc.lib.converters.plan` with an error naming the fields.
 """
 
 from __future__ import annotations
 
+import keyword
 import re
 
 #: Appended to a port name that would be an HDL keyword.
@@ -46,8 +48,8 @@ def port_name(steps: tuple[str | int, ...], prefix: str = "") -> str:
 
 
 def safe_name(name: str) -> str:
-    """Return `name`, or `name` + `KEYWORD_SUFFIX` when it is a VHDL or Verilog keyword."""
-    if name.lower() in _VHDL_KEYWORDS or name in _VERILOG_KEYWORDS:
+    """Return `name`, or `name` + `KEYWORD_SUFFIX` when it is a VHDL, Verilog or Python keyword."""
+    if name.lower() in _VHDL_KEYWORDS or name in _VERILOG_KEYWORDS or keyword.iskeyword(name):
         return name + KEYWORD_SUFFIX
     return name
 

@@ -85,6 +85,22 @@ class PortRole(StrEnum):
     FRAME_LENGTH = "frame_length"
 
 
+#: Ports that are single wires (std_logic); all others are vectors, even when one bit wide.
+WIRES = frozenset(
+    {
+        PortRole.CLOCK,
+        PortRole.RESET,
+        PortRole.VALID,
+        PortRole.READY,
+        PortRole.LAST,
+        PortRole.ERROR,
+        PortRole.TVALID,
+        PortRole.TREADY,
+        PortRole.TLAST,
+    }
+)
+
+
 @dataclass(frozen=True)
 class Port:
     """One port of a generated converter.
@@ -111,6 +127,16 @@ class Port:
     path: str | None = None
     ros_type: str | None = None
     member: tuple[str | int, ...] = ()
+
+    @property
+    def is_wire(self) -> bool:
+        """Whether the port is a ``std_logic`` (handshakes, clock, reset, bools), else a vector."""
+        return self.role in WIRES or self.ros_type == "bool"
+
+
+def member_text(port: str, member: tuple[str | int, ...]) -> str:
+    """How a member is written in Python: ``info.roi.x_offset``, ``tri.vertex_indices[2]``."""
+    return port + "".join(f"[{step}]" if isinstance(step, int) else f".{step}" for step in member)
 
 
 def count_bits(maximum: int) -> int:

@@ -22,25 +22,10 @@ from typing import Any
 
 from myhdl import ResetSignal, Signal, block, intbv
 
-from rfc.lib.converters.ports import Port, PortRole
+from rfc.lib.converters.ports import WIRES, Port, PortRole
 from rfc.toolchain import start_new_design
 
 _serial = itertools.count()
-
-
-#: Ports that are single wires (std_logic); all others are vectors, even when one bit wide.
-WIRES = frozenset(
-    {
-        PortRole.CLOCK,
-        PortRole.VALID,
-        PortRole.READY,
-        PortRole.LAST,
-        PortRole.ERROR,
-        PortRole.TVALID,
-        PortRole.TREADY,
-        PortRole.TLAST,
-    }
-)
 
 
 def port_signals(ports: Sequence[Port]) -> dict[str, Any]:

@@ -21,7 +21,8 @@ from myhdl import Signal, always, always_comb, block, concat, intbv, modbv
 
 from rfc.lib.schedulers.countdown import countdown_hardware, countdown_table
 from rfc.lib.schedulers.priority_tree import index_bits, priority_tree
-from rfc.lib.schedulers.spec import SchedulerSpec
+from rfc.lib.schedulers.registry import policy
+from rfc.lib.schedulers.spec import Algorithm, SchedulerSpec
 from rfc.lib.schedulers.statechart import Lines, PolicyHardware
 
 
@@ -33,6 +34,7 @@ def loedf_table(clk: Any, rst: Any, lines: Lines, keys: list[Any], pause: Any, s
     return countdown_table(clk, rst, lines, keys, loads, spec.counter_bits, False)
 
 
+@policy(Algorithm.LOEDF)
 def loedf_hardware(spec: SchedulerSpec) -> PolicyHardware:
     """The statechart parts of LOEDF."""
     return countdown_hardware(loedf_table, spec.counter_bits)
@@ -94,6 +96,7 @@ def roedf_table(clk: Any, rst: Any, lines: Lines, keys: list[Any], pause: Any, s
     return unregistered, encoder, deadline_rom, shared_adder, prioritize, register
 
 
+@policy(Algorithm.ROEDF)
 def roedf_hardware(spec: SchedulerSpec) -> PolicyHardware:
     """The statechart parts of ROEDF."""
     return PolicyHardware(

@@ -6,6 +6,8 @@ on every cycle; NPFP only when idle or at the holder's `tlast`.
 
 from __future__ import annotations
 
+from rfc.lib.schedulers.registry import policy
+from rfc.lib.schedulers.spec import Algorithm, SchedulerSpec
 from rfc.lib.schedulers.statechart import PolicyHardware
 
 
@@ -19,3 +21,15 @@ def fixed_priority_hardware(preemptive: bool) -> PolicyHardware:
         pauses=False,
         table=None,
     )
+
+
+@policy(Algorithm.NPFP)
+def npfp_hardware(spec: SchedulerSpec) -> PolicyHardware:
+    """NPFP: the holder keeps its grant until its ``tlast``."""
+    return fixed_priority_hardware(preemptive=False)
+
+
+@policy(Algorithm.PFP)
+def pfp_hardware(spec: SchedulerSpec) -> PolicyHardware:
+    """PFP: a lower index takes the grant on any cycle."""
+    return fixed_priority_hardware(preemptive=True)

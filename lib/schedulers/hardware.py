@@ -12,28 +12,13 @@ from typing import Any
 
 from myhdl import ResetSignal, Signal, block, intbv
 
+# Each algorithm's module registers its hardware on import.
+from rfc.lib.schedulers import edf, fixed_priority, lru, lst  # noqa: F401
 from rfc.lib.schedulers.composition import SchedulerBlock, composition
-from rfc.lib.schedulers.edf import loedf_hardware, roedf_hardware
-from rfc.lib.schedulers.fixed_priority import fixed_priority_hardware
-from rfc.lib.schedulers.lru import lru_hardware
-from rfc.lib.schedulers.lst import lst_hardware
-from rfc.lib.schedulers.spec import Algorithm, AnySchedulerSpec, CompositionSpec, SchedulerSpec
-from rfc.lib.schedulers.statechart import PolicyHardware, statechart
+from rfc.lib.schedulers.registry import policy_hardware
+from rfc.lib.schedulers.spec import AnySchedulerSpec, CompositionSpec
+from rfc.lib.schedulers.statechart import statechart
 from rfc.toolchain import start_new_design
-
-
-def policy_hardware(spec: SchedulerSpec) -> PolicyHardware:
-    """The Compute Condition and Set Grant parts of `spec`'s algorithm."""
-    algorithm = spec.algorithm
-    if algorithm in (Algorithm.NPFP, Algorithm.PFP):
-        return fixed_priority_hardware(preemptive=algorithm is Algorithm.PFP)
-    if algorithm is Algorithm.LRU:
-        return lru_hardware(spec)
-    if algorithm is Algorithm.LOEDF:
-        return loedf_hardware(spec)
-    if algorithm is Algorithm.ROEDF:
-        return roedf_hardware(spec)
-    return lst_hardware(spec)
 
 
 def scheduler_block(spec: AnySchedulerSpec) -> SchedulerBlock:

@@ -13,7 +13,8 @@ from typing import Any
 from myhdl import always, block
 
 from rfc.lib.schedulers.priority_tree import index_bits
-from rfc.lib.schedulers.spec import SchedulerSpec
+from rfc.lib.schedulers.registry import policy
+from rfc.lib.schedulers.spec import Algorithm, SchedulerSpec
 from rfc.lib.schedulers.statechart import Lines, PolicyHardware
 
 
@@ -39,6 +40,7 @@ def lru_table(clk: Any, rst: Any, lines: Lines, keys: list[Any], pause: Any, spe
     return rerank
 
 
+@policy(Algorithm.LRU)
 def lru_hardware(spec: SchedulerSpec) -> PolicyHardware:
     """The statechart parts of LRU."""
     return PolicyHardware(

@@ -14,7 +14,8 @@ from typing import Any
 from myhdl import block
 
 from rfc.lib.schedulers.countdown import countdown_hardware, countdown_table
-from rfc.lib.schedulers.spec import SchedulerSpec
+from rfc.lib.schedulers.registry import policy
+from rfc.lib.schedulers.spec import Algorithm, SchedulerSpec
 from rfc.lib.schedulers.statechart import Lines, PolicyHardware
 
 
@@ -26,6 +27,7 @@ def lst_table(clk: Any, rst: Any, lines: Lines, keys: list[Any], pause: Any, spe
     return countdown_table(clk, rst, lines, keys, loads, spec.counter_bits, True)
 
 
+@policy(Algorithm.LST)
 def lst_hardware(spec: SchedulerSpec) -> PolicyHardware:
     """The statechart parts of LST."""
     return countdown_hardware(lst_table, spec.counter_bits)

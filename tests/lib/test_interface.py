@@ -149,13 +149,18 @@ uint8 from
 
 
 @pytest.fixture(scope="module")
-def kinds_types(tmp_path_factory):
-    folder = tmp_path_factory.mktemp("msgs") / "kinds_msgs" / "msg"
-    folder.mkdir(parents=True)
-    (folder / "Kinds.msg").write_text(KINDS)
-    (folder / "Point.msg").write_text("float64 x\nint32 y\n")
+def kinds_folder(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("msgs")
+    (folder / "kinds_msgs" / "msg").mkdir(parents=True)
+    (folder / "kinds_msgs" / "msg" / "Kinds.msg").write_text(KINDS)
+    (folder / "kinds_msgs" / "msg" / "Point.msg").write_text("float64 x\nint32 y\n")
+    return folder
+
+
+@pytest.fixture(scope="module")
+def kinds_types(kinds_folder):
     return {
-        middleware: MessageTypes(middleware, msg_paths=[folder.parent])
+        middleware: MessageTypes(middleware, msg_paths=[kinds_folder])
         for middleware in (Middleware.ROS1, Middleware.ROS2)
     }
 
@@ -209,3 +214,105 @@ def test_a_field_named_like_a_handshake_is_refused_naming_it(tmp_path, name):
     assert f"field '{name}' of clash_msgs/msg/Clash" in message
     assert f"the {name} of the message" in message
     assert f"exclude '{name}'" in message
+
+
+UNDRIVEN = """
+from myhdl import always_seq, block
+
+import rfc
+
+
+@rfc.accelerator(inputs={"p": "geometry_msgs/Point"}, outputs={"m": "geometry_msgs/Point"})
+@block
+def forgetful(clk, rst, p, m):
+    @always_seq(clk.posedge, reset=rst)
+    def logic():
+        p.ready.next = 1
+        m.valid.next = p.valid
+        m.x.next = p.x
+        m.y.next = p.y
+
+    return logic
+
+
+project = rfc.Project("Forgetful", middleware="ROS2", bus_width=64)
+project.subscriber("sub", "geometry_msgs/Point") >> project.accelerator("acc", forgetful) >> (
+    project.publisher("pub", "geometry_msgs/Point")
+)
+"""
+
+
+def test_an_output_the_block_never_drives_is_refused_by_its_member(tmp_path):
+    spec = tmp_path / "forgetful.py"
+    spec.write_text(UNDRIVEN)
+    result = run_rfc("build", spec, "-o", tmp_path / "out")
+    assert result.returncode == 1
+    assert "Traceback" not in result.stderr
+    assert "MyHDL accelerator 'forgetful' never drives m.z (port m_z)" in result.stderr
+    assert "m.z.next = 0" in result.stderr
+    assert not (tmp_path / "out").exists()
+
+
+EVERY_KIND = """
+project: {{name: Kinds, middleware: {middleware}, busWidth: {width}, scheduler: LRU,
+          msg_paths: [{msgs}], maxima: {{string: 24, sequence: 6}}}}
+accelerators:
+  - name: PassKinds
+    type: MyHDL
+    sources: ./pass.py
+    top: typed_pass_through
+    interface:
+      input: [{{message: kinds_msgs/Kinds}}]
+      output: [{{message: kinds_msgs/Kinds}}]
+blocks:
+  - {{name: sub, type: ROS>accelerator, message: kinds_msgs/Kinds, topic: /in,
+     outgoing: [{{name: acc}}]}}
+  - {{name: acc, type: PassKinds, outgoing: [{{name: pub}}]}}
+  - {{name: pub, type: accelerator>ROS, message: kinds_msgs/Kinds, topic: /out}}
+"""
+
+
+def kinds(rng: np.random.Generator) -> dict:
+    def text() -> str:
+        return "".join(rng.choice(list("abcxyz_/"), size=int(rng.integers(0, 25))))
+
+    def point() -> dict:
+        return {"x": float(rng.normal()), "y": int(rng.integers(-(2**31), 2**31))}
+
+    integers = {f"{s}{b}": int(rng.integers(-(2 ** (b - 1)), 2 ** (b - 1))) for s, b in
+                (("i", 8), ("i", 16), ("i", 32), ("i", 64))}  # fmt: skip
+    integers |= {f"u{b}": int(rng.integers(0, 2**b, dtype=np.uint64)) for b in (8, 16, 32, 64)}
+    return integers | {
+        "flag": bool(rng.integers(2)),
+        "f32": float(np.float32(rng.normal())),
+        "f64": float(rng.normal()),
+        "label": text(),
+        "fixed": [int(v) for v in rng.integers(0, 2**16, size=3)],
+        "samples": rng.normal(size=int(rng.integers(0, 7))).astype(np.float32),
+        "corners": [point(), point()],
+        "path": [point() for _ in range(int(rng.integers(0, 7)))],
+        "tags": [text() for _ in range(int(rng.integers(0, 7)))],
+        "centre": point(),
+        "from": int(rng.integers(0, 256)),
+    }
+
+
+@pytest.mark.parametrize(
+    ("middleware", "width"), [(Middleware.ROS1, 8), (Middleware.ROS2, 32), (Middleware.ROS2, 64)]
+)
+def test_every_field_kind_passes_through_a_typed_block_byte_exact(
+    tmp_path, kinds_folder, kinds_types, middleware, width
+):
+    types = kinds_types[middleware]
+    spec = tmp_path / "kinds.yaml"
+    spec.write_text(EVERY_KIND.format(middleware=middleware.value, width=width, msgs=kinds_folder))
+    (tmp_path / "pass.py").write_text("from rfc.lib.passthrough import typed_pass_through\n")
+    rng = np.random.default_rng(width)
+    kind = "kinds_msgs/msg/Kinds"
+    frames = [types.serialize(types.build(kind, kinds(rng)), kind) for _ in range(10)]
+    bag = tmp_path / ("in.bag" if middleware is Middleware.ROS1 else "in.mcap")
+    out = bag.with_stem("out")
+    write_bag(bag, types, {"/in": kind}, [("/in", 1000 * i, f) for i, f in enumerate(frames, 1)])
+    result = run_rfc("sim", spec, "--bag", bag, "--out", out, cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert [m.data for m in read_bag(out, types, ["/out"])] == frames

@@ -12,6 +12,7 @@ from pathlib import Path
 
 import pytest
 
+from rfc.errors import RfcError
 from rfc.ir.model import Stage
 from rfc.ir.text import format_ir
 from rfc.passes.pipeline import PIPELINE, describe, pass_names, run_pipeline
@@ -23,12 +24,14 @@ SYSTEMS = {
     "rotation_converter": ROOT / "examples" / "rotation_converter" / "RotationConverterNode.yaml",
     "image_pipeline": ROOT / "examples" / "image_pipeline" / "ImagePipeline.yaml",
 }
+#: Systems the logic cannot hold yet, with the pass that says so and what it says.
+REFUSED = {"image_pipeline": ("check-hardware", "the publishers' buffers need")}
 
 
 def test_the_pipeline_is_the_one_of_the_design():
     assert describe() == (
         "resolve-types → check-connections → expand-selections → flatten-messages → "
-        "derive-infrastructure"
+        "derive-infrastructure → check-hardware"
     )
     assert pass_names()[0] == "parse"
 
@@ -40,16 +43,23 @@ def test_each_pass_is_a_small_frozen_dataclass(step):
         step.name = "other"  # type: ignore[misc]
 
 
-def stages(path):
-    seen = []
-    run_pipeline(load_spec(path, path.name), after=lambda name, d: seen.append((name, d)))
+def stages(system):
+    """The designs after each pass; a refused system's stop before the pass that refuses it."""
+    path, seen = SYSTEMS[system], []
+    refused, message = REFUSED.get(system, (None, ""))
+    pipeline = tuple(p for p in PIPELINE if p.name != refused)
+    run_pipeline(load_spec(path, path.name), pipeline, lambda name, d: seen.append((name, d)))
+    if refused:
+        step = next(p for p in PIPELINE if p.name == refused)
+        with pytest.raises(RfcError, match=message):
+            step.apply(seen[-1][1])
     return seen
 
 
 @pytest.mark.parametrize("system", SYSTEMS)
 def test_each_pass_moves_one_stage_on_and_leaves_its_input_alone(system):
-    seen = stages(SYSTEMS[system])
-    assert [d.stage for _, d in seen] == list(Stage)
+    seen = stages(system)
+    assert [d.stage for _, d in seen] == list(Stage)[: len(seen)]
     texts = [format_ir(d) for _, d in seen]
     again = [format_ir(d) for _, d in seen]  # designs are frozen: rendering twice agrees
     assert texts == again
@@ -58,7 +68,7 @@ def test_each_pass_moves_one_stage_on_and_leaves_its_input_alone(system):
 
 @pytest.mark.parametrize("system", SYSTEMS)
 def test_ir_text_after_each_pass_matches_golden(system):
-    for name, design in stages(SYSTEMS[system]):
+    for name, design in stages(system):
         golden = GOLDEN / f"{system}.{name}.yaml"
         text = format_ir(design)
         if os.environ.get("RFC_UPDATE_GOLDEN"):

@@ -11,11 +11,10 @@ outputs. Cell ports named ``clk``/``ap_clk`` go on the clock, ``rst``/``ap_rst``
 
 from __future__ import annotations
 
-import inspect
+import re
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
 
 from rfc.errors import RfcError
 from rfc.ir.model import AcceleratorKind, AcceleratorType, Block
@@ -29,11 +28,15 @@ from rfc.lower.system.components import Component, adapter_component, convert
 from rfc.lower.system.interfaces import MESSAGE, Pin, accelerator_pins
 from rfc.lower.system.latency import accelerator_latency
 from rfc.messages.limits import Limits
-from rfc.spec.python_sources import function_in
-from rfc.toolchain import GhdlError, read_entities
+from rfc.passes.check_hardware import (
+    CLOCK,
+    RESET,
+    block_function,
+    flat_ports,
+    takes_interfaces,
+    vhdl_entity,
+)
 
-#: Ports every accelerator has besides its message pins.
-CLOCK, RESET = "clk", "rst"
 #: The Vitis HLS cores' control ports (``ap_ctrl_hs``).
 _HLS_CONTROL = (
     PortDecl("ap_clk", Mode.IN, 1, True),
@@ -89,13 +92,15 @@ def accelerator_hardware(
         RfcError: The accelerator's source does not follow the port convention, or is ROS-SW.
     """
     ports = {port.name: accelerator_pins(port, width, limits) for port in block.ports}
-    if accelerator.kind is AcceleratorKind.MYHDL:
-        return _myhdl(accelerator, ports, directory)
-    if accelerator.kind is AcceleratorKind.VHDL:
-        return _vhdl(accelerator, ports)
-    if accelerator.kind is AcceleratorKind.HLS:
-        return _hls(accelerator, block, ports, directory)
-    raise RfcError(f"accelerator '{accelerator.name}' is ROS-SW: it has no hardware")
+    builder = _BUILDERS.get(accelerator.kind)
+    if builder is None:
+        kinds = ", ".join(kind.value for kind in _BUILDERS)
+        raise RfcError(
+            f"accelerator '{accelerator.name}' is {accelerator.kind.value}, which has no "
+            f"hardware; the kinds in the logic are {kinds}",
+            location=accelerator.location,
+        )
+    return builder(accelerator, block, ports, directory)
 
 
 def entity_name(accelerator: AcceleratorType) -> str:
@@ -120,14 +125,15 @@ def _own_pins(ports: Mapping[str, tuple[Pin, ...]]) -> dict[tuple[str, str], tup
 def _myhdl(
     accelerator: AcceleratorType, ports: Mapping[str, tuple[Pin, ...]], directory: Path
 ) -> AcceleratorHardware:
-    function = _block_function(accelerator)
+    function = block_function(accelerator)
     declared = _convention(ports)
     name = entity_name(accelerator)
-    if _takes_interfaces(accelerator, function, ports, [d.name for d in declared]):
-        signatures = {port: tuple(pin.signal for pin in pins) for port, pins in ports.items()}
+    signatures = {port: tuple(pin.signal for pin in pins) for port, pins in ports.items()}
+    if takes_interfaces(accelerator, function, signatures):
         function = typed_block(function, signatures, f"{name}_interfaces")
     signals = [_signal_port(d) for d in declared]
     component = convert(name, signals, function, directory, f"MyHDL accelerator {accelerator.name}")
+    _check_driven(accelerator, ports, component.files[-1])
     inputs = [
         p
         for p in ports
@@ -143,60 +149,33 @@ def _myhdl(
     )
 
 
-def _block_function(accelerator: AcceleratorType) -> Any:
-    if accelerator.block_function is not None:
-        return accelerator.block_function
-    python = next(p for p in accelerator.sources if p.suffix == ".py")
-    function = function_in(python, accelerator.top or accelerator.name, accelerator, "MyHDL block")
-    definition = getattr(function, "definition", None)  # an @rfc.accelerator in a YAML project
-    return getattr(definition, "block_function", None) or function
+_PORT_MODE = re.compile(r"^\s*(\w+)\s*:\s*(in|out|inout)\b", re.M)
 
 
-def _takes_interfaces(
-    accelerator: AcceleratorType,
-    function: Any,
-    ports: Mapping[str, tuple[Pin, ...]],
-    flat: list[str],
-) -> bool:
-    """Whether the block takes interface objects (one argument per port) or flat ports.
+def _check_driven(
+    accelerator: AcceleratorType, ports: Mapping[str, tuple[Pin, ...]], vhdl: Path
+) -> None:
+    """Refuse outputs the block never drives: MyHDL declares those as inputs.
 
     Raises:
-        RfcError: It has the arguments of neither form.
+        RfcError: Naming the first undriven output by its interface-object member.
     """
-    plain = getattr(function, "func", function)  # MyHDL's @block keeps the function in .func
-    try:
-        parameters = inspect.signature(plain).parameters
-    except (TypeError, ValueError):
-        return False
-    typed = [CLOCK, RESET, *ports]
-    keywords = any(p.kind is inspect.Parameter.VAR_KEYWORD for p in parameters.values())
-    required = [
-        n
-        for n, p in parameters.items()
-        if p.default is inspect.Parameter.empty and p.kind is not inspect.Parameter.VAR_KEYWORD
-    ]
-    if all(n in parameters for n in typed) and all(n in typed for n in required):
-        return True
-    missing = [] if keywords else [n for n in flat if n not in parameters]
-    extra = [n for n in required if n not in flat]
-    if not missing and not extra:
-        return False
-    if any(n in parameters for n in ports):  # meant as interface objects
-        missing = [n for n in typed if n not in parameters]
-        extra = [n for n in required if n not in typed]
-    problems = []
-    if missing:
-        problems.append(f"it lacks {', '.join(missing)}")
-    if extra:
-        problems.append(f"it also needs {', '.join(extra)}, which rfc does not provide")
-    raise RfcError(
-        f"MyHDL block '{plain.__name__}' of accelerator '{accelerator.name}' does not have "
-        f"the ports of its messages: {'; '.join(problems)}",
-        location=accelerator.location,
-        hint=f"declare it as {plain.__name__}({', '.join(typed)}) taking one interface object "
-        f"per message port (`rfc stub SPEC {accelerator.name} --lang myhdl` prints a skeleton), "
-        f"or with flat ports as {plain.__name__}({', '.join(flat)}) (docs/accelerators.md)",
-    )
+    entity = vhdl.read_text(encoding="utf-8").split("architecture", 1)[0]
+    modes = dict(_PORT_MODE.findall(entity))
+    for port, pins in ports.items():
+        for pin in pins:
+            if pin.port.mode is Mode.OUT and modes.get(pin.port.name) != "out":
+                member = port + "".join(
+                    f"[{step}]" if isinstance(step, int) else f".{step}"
+                    for step in pin.signal.member
+                )
+                raise RfcError(
+                    f"MyHDL accelerator '{accelerator.name}' never drives {member} (port "
+                    f"{pin.port.name}), an output of its messages",
+                    location=accelerator.location,
+                    hint=f"drive it, with a constant if it does not matter ({member}.next = 0 "
+                    "in a clocked process)",
+                )
 
 
 def _signal_port(declared: PortDecl) -> Port:
@@ -214,53 +193,11 @@ def _signal_port(declared: PortDecl) -> Port:
 def _vhdl(
     accelerator: AcceleratorType, ports: Mapping[str, tuple[Pin, ...]]
 ) -> AcceleratorHardware:
-    top = (accelerator.top or accelerator.name).lower()
-    found = None
-    for source in accelerator.sources:
-        try:
-            entities = read_entities(source)
-        except GhdlError as exc:
-            raise RfcError(
-                f"VHDL source '{source.name}' of accelerator '{accelerator.name}' does not "
-                f"analyse:\n{exc}",
-                location=accelerator.location,
-            ) from None
-        found = found or next((e for e in entities if e.name.lower() == top), None)
-    if found is None:
-        raise RfcError(
-            f"no entity '{top}' in the VHDL sources of accelerator '{accelerator.name}'",
-            location=accelerator.location,
-            hint="name the entity with 'top:' or name it like the accelerator",
-        )
-    expected = _convention(ports)
-    actual = {p.name: p for p in found.ports}
-    problems = []
-    for want in expected:
-        have = actual.get(want.name.lower())
-        if have is None:
-            problems.append(f"no port {want.name} ({_describe(want)})")
-        elif have.mode != want.mode.value or have.wire != want.wire or have.bits != want.bits:
-            kind = "std_logic" if have.wire else f"{have.bits}-bit vector"
-            problems.append(f"{have.name} is {have.mode} {kind}, expected {_describe(want)}")
-    names = {d.name.lower() for d in expected}
-    problems += [
-        f"port {p.name} is not part of the convention" for p in found.ports if p.name not in names
-    ]
-    if problems:
-        raise RfcError(
-            f"entity {found.name} ({found.file.name}:{found.line}) of accelerator "
-            f"'{accelerator.name}' does not have the ports of its messages: " + "; ".join(problems),
-            location=accelerator.location,
-            hint="docs/accelerators.md lists the ports an accelerator has for its messages",
-        )
-    entity = EntityDecl(found.name, tuple(expected))
+    signatures = {port: tuple(pin.signal for pin in pins) for port, pins in ports.items()}
+    found = vhdl_entity(accelerator, flat_ports(signatures))
+    entity = EntityDecl(found.name, tuple(_convention(ports)))
     component = Component(entity, tuple(accelerator.sources))
     return AcceleratorHardware((component,), (("", entity),), pins=_own_pins(ports))
-
-
-def _describe(port: PortDecl) -> str:
-    kind = "std_logic" if port.wire else f"std_logic_vector({port.bits - 1} downto 0)"
-    return f"{port.mode.value} {kind}"
 
 
 def _hls(
@@ -359,3 +296,17 @@ def _check_arguments(
                 location=argument.location,
                 hint=_ARGUMENT_ORDER,
             )
+
+
+#: Builds the hardware of an accelerator type: (type, a block of it, its pins, output folder).
+HardwareBuilder = Callable[
+    [AcceleratorType, Block, Mapping[str, tuple[Pin, ...]], Path], AcceleratorHardware
+]
+#: The accelerator kinds that become logic, each with its builder.
+_BUILDERS: dict[AcceleratorKind, HardwareBuilder] = {
+    AcceleratorKind.MYHDL: lambda accelerator, _, ports, directory: _myhdl(
+        accelerator, ports, directory
+    ),
+    AcceleratorKind.VHDL: lambda accelerator, _, ports, __: _vhdl(accelerator, ports),
+    AcceleratorKind.HLS: _hls,
+}

@@ -14,7 +14,6 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
-from rfc.errors import RfcError
 from rfc.ir.infrastructure import Converter, Scheduler
 from rfc.ir.model import BlockKind, Connection, Design
 from rfc.lib.converters.buffers import Buffer
@@ -30,10 +29,10 @@ from rfc.lower.system.components import (
     fork_component,
     manager_component,
 )
-from rfc.lower.system.devices import block_rams, bram36
 from rfc.lower.system.interfaces import MESSAGE
 from rfc.lower.system.top import CLOCK, RESET_N, Interface, Terminal, TopBuilder, wire_connection
 from rfc.messages.limits import Limits
+from rfc.passes.check_hardware import check_buffer_memory
 from rfc.passes.resolve_scheduler import ResolveScheduler
 
 #: The manager's cell label.
@@ -176,7 +175,7 @@ def generate_system(
         for (port, role), (suffix, name) in hardware.pins.items():
             interfaces.setdefault((block.name, port), {})[role] = Terminal(cells[suffix], name)
 
-    _check_buffer_memory(design, buffers)  # after the accelerators: their errors come first
+    check_buffer_memory(design, buffers)  # after the accelerators: their errors come first
     forks: dict[int, Component] = {}
     by_source: dict[tuple[str, str], list[Connection]] = defaultdict(list)
     for connection in infrastructure.hardware_connections:
@@ -226,30 +225,6 @@ def _top_entity(design: Design) -> EntityDecl:
     return EntityDecl(top_name(design), tuple(ports))
 
 
-def _check_buffer_memory(design: Design, buffers: Mapping[str, tuple[Buffer, ...]]) -> None:
-    """Refuse buffers that need more block RAM than the part has, naming the largest one."""
-    if not buffers:
-        return
-    need = {
-        (block, b.path): bram36(b.bits, b.words) for block, held in buffers.items() for b in held
-    }
-    have, known = block_rams(design.project.fpga_part)
-    if sum(need.values()) <= have:
-        return
-    block, path = max(need, key=lambda key: need[key])
-    device = f"the {design.project.fpga_part}'s" if known else "any supported device's"
-    # a crossing publisher is no block of the spec: the project stands for it
-    location = next((b.location for b in design.blocks if b.name == block), design.project.location)
-    raise RfcError(
-        f"the publishers' buffers need {sum(need.values()):,} block RAMs of 36 Kb at the "
-        f"project's maxima, more than {device} {have:,}; the largest holds '{path}' of "
-        f"'{block}' ({need[(block, path)]:,})",
-        location=location,
-        hint=f"give the project smaller maxima, e.g. maxima: {{string: 64, fields: {{{path}: N}}}} "
-        "(docs/spec.md)",
-    )
-
-
 def _wire_dma(builder: TopBuilder, label: str, converter: Converter, side: Side) -> None:
     """Join a converter's DMA side to its group on the manager."""
     if side is Side.SUBSCRIBER:
@@ -272,20 +247,16 @@ def _fan_out(
     fork: EntityDecl,
     what: str,
 ) -> None:
-    """One message to several blocks: fields shared, the handshake through a fork."""
+    """One message to several blocks: fields shared, the handshake through a fork.
+
+    check-hardware has refused strings and sequences here: a fork shares no sub-stream.
+    """
     valid, ready = f"{MESSAGE}_valid", f"{MESSAGE}_ready"
     label = f"{source[valid].cell}_{source[valid].port}_fork"
     builder.cell(label, fork)
     builder.wire(source[valid], Terminal(label, "s_valid"))
     builder.wire(Terminal(label, "s_ready"), source[ready])
     for index, target in enumerate(targets):
-        streamed = [n for n, t in target.items() if builder.port(t).mode is Mode.OUT and n != ready]
-        if streamed:
-            raise RfcError(
-                f"{what}: a message with strings or sequences ('{streamed[0]}') cannot feed "
-                "several blocks in the logic",
-                hint="exclude the string or sequence fields, or subscribe once per block",
-            )
         builder.wire(Terminal(label, f"m{index}_valid"), target[valid])
         builder.wire(target[ready], Terminal(label, f"m{index}_ready"))
         fields = {n: t for n, t in target.items() if n not in (valid, ready)}

@@ -22,7 +22,6 @@ from rfc.lib.converters.ports import (
     ports_of,
 )
 from rfc.lib.converters.steps import ROOT
-from rfc.lib.converters.toplevel import WIRES
 from rfc.lower.netlist import Mode, PortDecl
 from rfc.messages.limits import Limits
 
@@ -49,16 +48,11 @@ class Pin:
     signal: Port
 
 
-def is_wire(port: Port) -> bool:
-    """Whether a converter-convention port is a ``std_logic`` (else a vector)."""
-    return port.role in WIRES or port.role is PortRole.RESET or port.ros_type == "bool"
-
-
 def declaration(port: Port, name: str | None = None, mirrored: bool = False) -> PortDecl:
     """The netlist declaration of a converter-convention port."""
     into = port.direction is Direction.IN
     mode = Mode.IN if into != mirrored else Mode.OUT
-    return PortDecl(name or port.name, mode, port.bits, is_wire(port))
+    return PortDecl(name or port.name, mode, port.bits, port.is_wire)
 
 
 def accelerator_pins(port: ModelPort, width: int, limits: Limits) -> tuple[Pin, ...]:

@@ -11,9 +11,9 @@ import math
 
 from rfc.errors import RfcError
 from rfc.ir.model import BlockKind, Design
+from rfc.lib.devices import bram36
 from rfc.lower.artifacts import ReportSection
 from rfc.lower.report import markdown_table
-from rfc.lower.system.devices import bram36
 from rfc.lower.system.generate import SystemHardware
 from rfc.lower.system.latency import publisher_latency, subscriber_latency
 from rfc.toolchain import GhdlError, estimate_resources

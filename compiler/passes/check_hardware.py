@@ -1,0 +1,304 @@
+"""check-hardware: the rules of the logic, applied before anything is generated.
+
+`rfc check` runs this pass, so it refuses what `rfc build` would: names that no converter or
+accelerator port can have (`rfc.lib.converters.ports.check_names`), accelerators whose sources
+do not have the ports of their messages (MyHDL blocks by their parameters, VHDL entities port
+by port), a message with strings or sequences fanned out to several blocks, and publisher
+buffers beyond the part's block RAM. The lowering calls the same functions; this pass changes
+nothing in the design but its stage.
+"""
+
+from __future__ import annotations
+
+import inspect
+from collections import defaultdict
+from collections.abc import Callable, Iterator, Mapping, Sequence
+from dataclasses import dataclass, replace
+from typing import Any, ClassVar
+
+from rfc.errors import RfcError, SourceLocation
+from rfc.ir.infrastructure import Converter
+from rfc.ir.model import (
+    AcceleratorKind,
+    AcceleratorType,
+    Block,
+    BlockKind,
+    Design,
+    Direction,
+    Stage,
+)
+from rfc.lib.converters.buffers import Buffer, buffers_of
+from rfc.lib.converters.plan import plan
+from rfc.lib.converters.ports import Direction as PinDirection
+from rfc.lib.converters.ports import Port, PortRole, Side, accelerator_signature
+from rfc.lib.converters.steps import Plan
+from rfc.lib.devices import block_rams, bram36
+from rfc.messages.limits import Limits
+from rfc.spec.python_sources import function_in
+from rfc.toolchain import GhdlError, VhdlEntity, read_entities
+
+#: Ports every accelerator has besides its message pins.
+CLOCK, RESET = "clk", "rst"
+_CLOCK_PORTS = (
+    Port(CLOCK, 1, PinDirection.IN, PortRole.CLOCK),
+    Port(RESET, 1, PinDirection.IN, PortRole.RESET),
+)
+
+
+@dataclass(frozen=True)
+class CheckHardware:
+    """Refuse, with the spec's locations, every design the logic cannot be made of."""
+
+    name: ClassVar[str] = "check-hardware"
+
+    def apply(self, design: Design) -> Design:
+        """Return `design` at stage CHECKED, or raise the first rule it breaks."""
+        infrastructure = design.infrastructure
+        assert infrastructure is not None, "check-hardware runs after derive-infrastructure"
+        limits, width = design.project.maxima, design.project.bus_width
+        locations = {b.name: b.location for b in design.blocks}
+        buffers: dict[str, tuple[Buffer, ...]] = {}
+        for side, converters in (
+            (Side.SUBSCRIBER, infrastructure.subscribers),
+            (Side.PUBLISHER, infrastructure.publishers),
+        ):
+            for converter in converters:
+                location = locations.get(converter.block, design.project.location)
+                chosen = located(lambda c=converter: converter_plan(c, limits), location)
+                if side is Side.PUBLISHER and (held := buffers_of(chosen)):
+                    buffers[converter.block] = held
+        checked: set[str] = set()
+        for block in design.blocks_of(BlockKind.ACCELERATOR):
+            if block.name in infrastructure.software:
+                continue
+            accelerator = design.accelerator(block.accelerator or "")
+            signatures = located(
+                lambda b=block: accelerator_signatures(b, width, limits), accelerator.location
+            )
+            if accelerator.name not in checked:
+                checked.add(accelerator.name)
+                check_sources(accelerator, signatures)
+        check_fan_out(design)
+        check_buffer_memory(design, buffers)
+        return replace(design, stage=Stage.CHECKED)
+
+
+def located(make: Any, location: SourceLocation) -> Any:
+    """Call `make()`; an error without a location gets `location` (lib knows no spec)."""
+    try:
+        return make()
+    except RfcError as exc:
+        if exc.location is not None:
+            raise
+        raise RfcError(exc.message, location=location, hint=exc.hint) from None
+
+
+def converter_plan(converter: Converter, limits: Limits) -> Plan:
+    """The plan of a converter of the model (its names checked)."""
+    return plan(converter.layout, converter.bus_width, limits)
+
+
+def accelerator_signatures(block: Block, width: int, limits: Limits) -> dict[str, tuple[Port, ...]]:
+    """Each message port's signature on an accelerator block, by port name."""
+    signatures = {}
+    for port in block.ports:
+        assert port.layout is not None
+        side = Side.SUBSCRIBER if port.direction is Direction.IN else Side.PUBLISHER
+        signatures[port.name] = accelerator_signature(
+            plan(port.layout, width, limits), side, port.name
+        )
+    return signatures
+
+
+def flat_ports(signatures: Mapping[str, Sequence[Port]]) -> tuple[Port, ...]:
+    """Clock, reset and every message pin: the flat ports of an accelerator's entity."""
+    return (*_CLOCK_PORTS, *(p for ports in signatures.values() for p in ports))
+
+
+def check_sources(accelerator: AcceleratorType, signatures: Mapping[str, Sequence[Port]]) -> None:
+    """Check that an accelerator's source has the ports of its messages.
+
+    Raises:
+        RfcError: The MyHDL block or VHDL entity has other ports.
+    """
+    if not all(path.exists() for path in accelerator.sources):
+        return  # `rfc stub` reads a spec whose source is still to be written
+    check = _SOURCE_CHECKS.get(accelerator.kind)
+    if check is not None:
+        check(accelerator, signatures)
+
+
+def block_function(accelerator: AcceleratorType) -> Any:
+    """The MyHDL block function of a MyHDL accelerator (imported from its source)."""
+    if accelerator.block_function is not None:
+        return accelerator.block_function
+    python = next(p for p in accelerator.sources if p.suffix == ".py")
+    function = function_in(python, accelerator.top or accelerator.name, accelerator, "MyHDL block")
+    definition = getattr(function, "definition", None)  # an @rfc.accelerator in a YAML project
+    return getattr(definition, "block_function", None) or function
+
+
+def takes_interfaces(
+    accelerator: AcceleratorType, function: Any, signatures: Mapping[str, Sequence[Port]]
+) -> bool:
+    """Whether the block takes interface objects (one argument per port) or flat ports.
+
+    Raises:
+        RfcError: It has the arguments of neither form.
+    """
+    plain = getattr(function, "func", function)  # MyHDL's @block keeps the function in .func
+    try:
+        parameters = inspect.signature(plain).parameters
+    except (TypeError, ValueError):
+        return False
+    typed = [CLOCK, RESET, *signatures]
+    flat = [p.name for p in flat_ports(signatures)]
+    keywords = any(p.kind is inspect.Parameter.VAR_KEYWORD for p in parameters.values())
+    required = [
+        n
+        for n, p in parameters.items()
+        if p.default is inspect.Parameter.empty and p.kind is not inspect.Parameter.VAR_KEYWORD
+    ]
+    if all(n in parameters for n in typed) and all(n in typed for n in required):
+        return True
+    missing = [] if keywords else [n for n in flat if n not in parameters]
+    extra = [n for n in required if n not in flat]
+    if not missing and not extra:
+        return False
+    if any(n in parameters for n in signatures):  # meant as interface objects
+        missing = [n for n in typed if n not in parameters]
+        extra = [n for n in required if n not in typed]
+    problems = []
+    if missing:
+        problems.append(f"it lacks {', '.join(missing)}")
+    if extra:
+        problems.append(f"it also needs {', '.join(extra)}, which rfc does not provide")
+    raise RfcError(
+        f"MyHDL block '{plain.__name__}' of accelerator '{accelerator.name}' does not have "
+        f"the ports of its messages: {'; '.join(problems)}",
+        location=accelerator.location,
+        hint=f"declare it as {plain.__name__}({', '.join(typed)}) taking one interface object "
+        f"per message port (`rfc stub SPEC {accelerator.name} --lang myhdl` prints a skeleton), "
+        f"or with flat ports as {plain.__name__}({', '.join(flat)}) (docs/accelerators.md)",
+    )
+
+
+def vhdl_entity(accelerator: AcceleratorType, expected: Sequence[Port]) -> VhdlEntity:
+    """The entity of a VHDL accelerator, checked port by port against `expected`.
+
+    Raises:
+        RfcError: A source does not analyse, the entity is missing, or its ports differ.
+    """
+    top = (accelerator.top or accelerator.name).lower()
+    found = None
+    for source in accelerator.sources:
+        try:
+            entities = read_entities(source)
+        except GhdlError as exc:
+            raise RfcError(
+                f"VHDL source '{source.name}' of accelerator '{accelerator.name}' does not "
+                f"analyse:\n{exc}",
+                location=accelerator.location,
+            ) from None
+        found = found or next((e for e in entities if e.name.lower() == top), None)
+    if found is None:
+        raise RfcError(
+            f"no entity '{top}' in the VHDL sources of accelerator '{accelerator.name}'",
+            location=accelerator.location,
+            hint="name the entity with 'top:' or name it like the accelerator; "
+            f"`rfc stub SPEC {accelerator.name} --lang vhdl` prints one",
+        )
+    actual = {p.name: p for p in found.ports}
+    problems = []
+    for want in expected:
+        have = actual.get(want.name.lower())
+        if have is None:
+            problems.append(f"no port {want.name} ({_describe(want)})")
+        elif (
+            have.mode != want.direction.value or have.wire != want.is_wire or have.bits != want.bits
+        ):
+            kind = "std_logic" if have.wire else f"{have.bits}-bit vector"
+            problems.append(f"{have.name} is {have.mode} {kind}, expected {_describe(want)}")
+    names = {p.name.lower() for p in expected}
+    problems += [
+        f"port {p.name} is not part of the convention" for p in found.ports if p.name not in names
+    ]
+    if problems:
+        raise RfcError(
+            f"entity {found.name} ({found.file.name}:{found.line}) of accelerator "
+            f"'{accelerator.name}' does not have the ports of its messages: " + "; ".join(problems),
+            location=accelerator.location,
+            hint=f"`rfc stub SPEC {accelerator.name} --lang vhdl` prints the entity to write "
+            "(docs/accelerators.md)",
+        )
+    return found
+
+
+def _describe(port: Port) -> str:
+    kind = "std_logic" if port.is_wire else f"std_logic_vector({port.bits - 1} downto 0)"
+    return f"{port.direction.value} {kind}"
+
+
+def check_fan_out(design: Design) -> None:
+    """Refuse a message with strings or sequences that feeds several blocks in the logic."""
+    infrastructure = design.infrastructure
+    assert infrastructure is not None
+    by_source = defaultdict(list)
+    for connection in infrastructure.hardware_connections:
+        by_source[(connection.source.block, connection.source.port)].append(connection)
+    for connections in by_source.values():
+        if len(connections) < 2:
+            continue
+        for connection in connections:
+            streamed = next(_streamed(design, connection.destination.block), None)
+            if streamed is not None:
+                raise RfcError(
+                    f"connection {connection.source} → {connection.destination}: a message "
+                    f"with strings or sequences ('{streamed}') cannot feed several blocks in "
+                    "the logic",
+                    location=connection.location,
+                    hint="exclude the string or sequence fields, or subscribe once per block",
+                )
+
+
+def _streamed(design: Design, block_name: str) -> Iterator[str]:
+    """The selected strings and sequences a block's inputs take."""
+    for port in design.block(block_name).inputs:
+        assert port.layout is not None
+        for leaf in port.layout.fields:
+            if leaf.selected and leaf.kind.value != "primitive":
+                yield leaf.path
+
+
+def check_buffer_memory(design: Design, buffers: Mapping[str, tuple[Buffer, ...]]) -> None:
+    """Refuse buffers that need more block RAM than the part has, naming the largest one."""
+    if not buffers:
+        return
+    need = {
+        (block, b.path): bram36(b.bits, b.words) for block, held in buffers.items() for b in held
+    }
+    have, known = block_rams(design.project.fpga_part)
+    if sum(need.values()) <= have:
+        return
+    block, path = max(need, key=lambda key: need[key])
+    device = f"the {design.project.fpga_part}'s" if known else "any supported device's"
+    # a crossing publisher is no block of the spec: the project stands for it
+    location = next((b.location for b in design.blocks if b.name == block), design.project.location)
+    raise RfcError(
+        f"the publishers' buffers need {sum(need.values()):,} block RAMs of 36 Kb at the "
+        f"project's maxima, more than {device} {have:,}; the largest holds '{path}' of "
+        f"'{block}' ({need[(block, path)]:,})",
+        location=location,
+        hint=f"give the project smaller maxima, e.g. maxima: {{string: 64, fields: {{{path}: N}}}} "
+        "(docs/spec.md)",
+    )
+
+
+#: Per accelerator kind, how its source is checked against its message signatures (HLS
+#: functions are read by the lowering; ROS-SW functions run on messages, not ports).
+_SOURCE_CHECKS: dict[
+    AcceleratorKind, Callable[[AcceleratorType, Mapping[str, Sequence[Port]]], object]
+] = {
+    AcceleratorKind.MYHDL: lambda a, signatures: takes_interfaces(a, block_function(a), signatures),
+    AcceleratorKind.VHDL: lambda a, signatures: vhdl_entity(a, flat_ports(signatures)),
+}

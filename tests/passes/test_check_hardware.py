@@ -1,0 +1,92 @@
+"""check-hardware: `rfc check` refuses what `rfc build` would, with the same words.
+
+Each case is a spec the logic cannot be made of. Both commands must exit 1 with one message
+(no traceback) naming the spec's line; `rfc build` must write nothing.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from tests.lower.system.systems import PASS_THROUGH, fan_out, point_system, point_vhdl, write_spec
+from tests.support.cli import run_rfc
+
+ROOT = Path(__file__).resolve().parents[2]
+CLASH = """
+project: {name: Clash, middleware: ROS2, busWidth: 64, msg_paths: [./msgs]}
+accelerators:
+  - name: Pass
+    type: MyHDL
+    sources: ./pass.py
+    top: pass_through
+    interface:
+      input: [{message: clash_msgs/Clash}]
+      output: [{message: clash_msgs/Clash}]
+blocks:
+  - {name: sub, type: ROS>accelerator, message: clash_msgs/Clash, outgoing: [{name: acc}]}
+  - {name: acc, type: Pass, outgoing: [{name: pub}]}
+  - {name: pub, type: accelerator>ROS, message: clash_msgs/Clash}
+"""
+STREAM_FAN_OUT = fan_out().replace("geometry_msgs/Twist", "sensor_msgs/CompressedImage")
+
+
+def multi_type_at_default_maxima(folder: Path) -> Path:
+    source = ROOT / "examples/multi_type"
+    for name in ("MultiType.yaml", "passthrough.py"):
+        text = (source / name).read_text()
+        if name.endswith(".yaml"):
+            text = "\n".join(line for line in text.splitlines() if "maxima:" not in line)
+        (folder / name).write_text(text)
+    return folder / "MultiType.yaml"
+
+
+def clash(folder: Path) -> Path:
+    (folder / "msgs" / "clash_msgs" / "msg").mkdir(parents=True)
+    (folder / "msgs" / "clash_msgs" / "msg" / "Clash.msg").write_text("float64 x\nbool ready\n")
+    return write_spec(folder, CLASH, pass__py=PASS_THROUGH)
+
+
+CASES = {
+    "myhdl block off its messages": (
+        lambda f: write_spec(
+            f,
+            point_system("MyHDL", "acc.py", "acc"),
+            acc__py="from myhdl import block\n\n@block\ndef acc(clk, rst, a, b):\n    return []\n",
+        ),
+        "spec.yaml:4:5: MyHDL block 'acc' of accelerator 'PassPoint' does not have the ports",
+    ),
+    "vhdl entity off its messages": (
+        lambda f: write_spec(
+            f, point_system("VHDL", "p.vhd", "pass_point"), p__vhd=point_vhdl(x_bits=32)
+        ),
+        "in0_x is in 32-bit vector, expected in std_logic_vector(63 downto 0)",
+    ),
+    "a field on a handshake's member": (
+        clash,
+        "field 'ready' of clash_msgs/msg/Clash would be the member 'ready'",
+    ),
+    "strings fanned out": (
+        lambda f: write_spec(f, STREAM_FAN_OUT, pass__py=PASS_THROUGH),
+        "a message with strings or sequences ('header.frame_id') cannot feed several blocks",
+    ),
+    "buffers beyond the block ram": (
+        multi_type_at_default_maxima,
+        "the publishers' buffers need 2,308 block RAMs of 36 Kb at the project's maxima",
+    ),
+}
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_check_refuses_what_build_refuses_with_the_same_message(tmp_path, case):
+    make, expected = CASES[case]
+    spec = make(tmp_path)
+    checked = run_rfc("check", spec, cwd=tmp_path)
+    built = run_rfc("build", spec, "-o", tmp_path / "out", cwd=tmp_path)
+    for result in (checked, built):
+        assert result.returncode == 1, result.stderr
+        assert "Traceback" not in result.stderr
+        assert expected in result.stderr
+    assert checked.stderr == built.stderr
+    assert not (tmp_path / "out").exists()

@@ -1,6 +1,6 @@
 """`rfc dse [SPEC]`: the paper's scheduler evaluation, or a scheduler recommended for a project.
 
-Without SPEC it sweeps the schedulers over the datasets (DESIGN.md §7), prints the metrics and
+Without SPEC it sweeps the schedulers over the datasets (docs/dse.md), prints the metrics and
 writes tables, figures and an HTML report into DIR; `--verify-hdl` re-runs sampled points on
 the generated hardware in GHDL. With SPEC it ranks the candidate schedulers for the project's
 publishers by the objective and prints the recommendation with its reasons.

@@ -73,7 +73,7 @@ def show(
 
 
 def layout_json(layout: Layout, distro: str) -> dict[str, Any]:
-    """The JSON form of a layout (DESIGN.md §9), with `align`, `kind`, `bound` and `element`."""
+    """A layout's JSON (docs/architecture.md), plus `align`, `kind`, `bound` and `element`."""
     return {
         "type": layout.display_name,
         "middleware": layout.middleware.value,

@@ -1,12 +1,13 @@
 """A scheduler for one project: its publishers' traffic, simulated under every candidate.
 
-The traffic follows DESIGN.md §7 with the project's own numbers: publisher i sends
-``transfer_beats`` beats (from its message layout and the bus width), then stays idle for its
-period minus its transfer, and must finish within its deadline (default: the period); all are
-released at cycle 0, the worst case of simultaneous arrival. One run of
-`simulation_cycles` cycles per candidate, with the counter widths the hardware would get.
-Candidates are the six algorithms and, with two or more publishers, the two-level
-combinations of the paper's most promising pair (LRU over LOEDF and LST halves).
+The traffic follows the paper's §7.2 (docs/dse.md) with the project's own numbers: publisher
+i sends ``transfer_beats`` beats (from its message layout and the bus width), then stays idle
+for its period minus its transfer, and must finish within its deadline (default: the period);
+all are released at cycle 0, the worst case of simultaneous arrival. One run per candidate,
+over `ProjectTraffic.cycles` (enough for `MESSAGES_RANKED` messages of the slowest
+publisher), with the counter widths the hardware would get. Candidates are the six algorithms
+and, with two or more publishers, the two-level combinations of the paper's most promising
+pair (LRU over LOEDF and LST halves).
 """
 
 from __future__ import annotations

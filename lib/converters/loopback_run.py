@@ -62,7 +62,7 @@ class LoopbackResult:
 
 @dataclass(frozen=True)
 class LoopbackReport:
-    """All messages of a type through the loopback (the JSON of DESIGN.md §9)."""
+    """All messages of a type through the loopback (its JSON: docs/architecture.md)."""
 
     type_name: str
     middleware: Middleware

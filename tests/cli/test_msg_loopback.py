@@ -1,4 +1,4 @@
-"""`rfc msg loopback`: the command-line contract of DESIGN.md §9, on the shared bags.
+"""`rfc msg loopback`: the command-line contract of docs/architecture.md, on the shared bags.
 
 The suite samples each bag (the first messages of a type); `tools/bench_converters.py
 --loopback` runs the whole bags at every width (figures in docs/converters.md).

@@ -1,4 +1,4 @@
-"""`rfc msg show`: the command-line contract of DESIGN.md §9."""
+"""`rfc msg show`: the command-line contract of docs/architecture.md."""
 
 from __future__ import annotations
 

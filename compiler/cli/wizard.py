@@ -62,7 +62,7 @@ def wizard(
             design = check_draft(draft, output)
         assert design.infrastructure is not None
         scheduler = design.infrastructure.scheduler
-        return scheduler.algorithm, scheduler.reason
+        return scheduler.algorithm, scheduler.reason.removeprefix("rfc dse: ")
 
     system = Session(prompter, base).run(recommend)
     with status.status("checking the spec as rfc check does", spinner="dots"):

@@ -9,6 +9,7 @@ import sys
 from pathlib import Path
 
 import pexpect
+import pytest
 
 from rfc.messages.rosbags_adapter import message_types, read_bag, write_bag
 from tests.support.cli import run_rfc
@@ -196,3 +197,21 @@ def test_closed_input_takes_the_defaults(tmp_path):
     )
     assert done.returncode == 0, done.stderr
     assert run_rfc("check", tmp_path / "project.yaml").returncode == 0
+
+
+@pytest.mark.slow  # 15 s, 90 s while the schedulers' synthesis cache is cold
+def test_two_publishers_with_periods_get_rfc_dses_ranking_as_the_default(tmp_path):
+    answers = tmp_path / "answers.txt"
+    answers.write_text(
+        "\n" * 14
+        + "Split\nMyHDL\n\na:geometry_msgs/Point, b:geometry_msgs/Point\n"
+        + "\n" * 6
+        + "\n\n\n2 us\ny\n\n\n\n4 us\n"
+    )
+    result = run_rfc("wizard", "--answers", answers, cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    ranked = run_rfc("dse", tmp_path / "project.yaml", "--json")
+    assert ranked.returncode == 0, ranked.stderr
+    recommended = json.loads(ranked.stdout)["recommended"]
+    assert f"rfc dse recommends {recommended}: " in result.stdout
+    assert f"scheduler: {recommended}\n" in (tmp_path / "project.yaml").read_text()

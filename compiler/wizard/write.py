@@ -78,6 +78,11 @@ def _compile(system: SystemAnswers, spec: Path, *, build: bool) -> Design:
     try:
         draft.write_text(spec_text(system, spec), encoding="utf-8")
         return compile_spec(draft, pipeline=BUILD_PIPELINE if build else PIPELINE)
+    except RfcError as exc:  # the spec would hold the same text: point at its line
+        if exc.location is None or exc.location.file != str(draft):
+            raise
+        location = replace(exc.location, file=str(spec))
+        raise RfcError(exc.message, location=location, hint=exc.hint) from None
     finally:
         draft.unlink(missing_ok=True)
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 import shutil
 import subprocess
 import sys
@@ -215,3 +216,14 @@ def test_two_publishers_with_periods_get_rfc_dses_ranking_as_the_default(tmp_pat
     recommended = json.loads(ranked.stdout)["recommended"]
     assert f"rfc dse recommends {recommended}: " in result.stdout
     assert f"scheduler: {recommended}\n" in (tmp_path / "project.yaml").read_text()
+
+
+def test_a_system_that_does_not_check_is_reported_at_the_specs_line_and_nothing_stays(tmp_path):
+    answers = tmp_path / "answers.txt"
+    answers.write_text("\n" * 14 + "Scale\nMyHDL\n" + "\n" * 13 + "input_sub>output_pub\n")
+    result = run_rfc("wizard", "--answers", answers, cwd=tmp_path)
+    assert result.returncode == 1
+    assert re.search(r"error: project\.yaml:\d+:\d+: ", result.stderr), result.stderr
+    assert ".rfc-wizard-draft" not in result.stderr
+    assert "Traceback" not in result.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["answers.txt"]

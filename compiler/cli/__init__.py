@@ -20,6 +20,7 @@ from rfc.cli.msg import msg_app
 from rfc.cli.sched import sched_app
 from rfc.cli.sim import sim_app
 from rfc.cli.stub import stub_app
+from rfc.cli.wizard import wizard_app
 from rfc.errors import RfcError
 
 app = typer.Typer(
@@ -35,6 +36,7 @@ app.add_typer(sim_app)
 app.add_typer(sched_app, name="sched")
 app.add_typer(dse_app)
 app.add_typer(stub_app)
+app.add_typer(wizard_app)
 
 
 def _version(value: bool) -> None:

@@ -3,10 +3,12 @@
 from __future__ import annotations
 
 import sys
+from contextlib import AbstractContextManager, nullcontext
 from pathlib import Path
 from typing import Annotated
 
 import typer
+from rich.console import Console
 
 from rfc.ir.model import BlockKind, Design
 
@@ -86,7 +88,8 @@ def build(
     pipeline = SOFTWARE_BUILD_PIPELINE if no_hardware else BUILD_PIPELINE
     design = compile_spec(str(spec), after=dump, pipeline=pipeline)
     options = BuildOptions(emit_ir=emit_ir, estimate=estimate, hardware=not no_hardware)
-    artifacts = lower(design, options, spec.read_text(encoding="utf-8"))
+    with _working("estimating the logic with Yosys" if estimate else None):
+        artifacts = lower(design, options, spec.read_text(encoding="utf-8"))
     write_artifacts(artifacts, output, str(output), inputs=_inputs(spec, design))
     names = ", ".join(a.path for a in artifacts)
     print(f"built {design.project.name} into {output}: {names}", file=sys.stderr)
@@ -96,6 +99,14 @@ def _inputs(spec: Path, design: Design) -> tuple[Path, ...]:
     """Everything the build read: never overwritten nor deleted by the writer."""
     sources = (source for accelerator in design.accelerators for source in accelerator.sources)
     return (spec, *sources, *design.project.msg_paths)
+
+
+def _working(what: str | None) -> AbstractContextManager[object]:
+    """A spinner on stderr while a long step runs (at a terminal, when `what` names one)."""
+    console = Console(stderr=True, highlight=False)
+    if what is None or not console.is_terminal:
+        return nullcontext()
+    return console.status(what, spinner="dots")
 
 
 def _summary(design: Design) -> str:

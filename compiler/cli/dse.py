@@ -1,6 +1,6 @@
 """`rfc dse [SPEC]`: the paper's scheduler evaluation, or a scheduler recommended for a project.
 
-Without SPEC it sweeps the schedulers over the datasets (DESIGN.md §7), prints the metrics and
+Without SPEC it sweeps the schedulers over the datasets (docs/dse.md), prints the metrics and
 writes tables, figures and an HTML report into DIR; `--verify-hdl` re-runs sampled points on
 the generated hardware in GHDL. With SPEC it ranks the candidate schedulers for the project's
 publishers by the objective and prints the recommendation with its reasons.
@@ -108,6 +108,14 @@ def dse(
         ),
     ] = None,
     seed: Annotated[int | None, typer.Option(help="Seed of the datasets (default 0).")] = None,
+    horizon: Annotated[
+        int | None,
+        typer.Option(
+            min=1,
+            metavar="CYCLES",
+            help="Cycles a project is simulated (default: ten periods of its slowest publisher).",
+        ),
+    ] = None,
 ) -> None:
     """Explore the schedulers (paper §7.2), or recommend one for the project SPEC."""
     from rfc.dse.engine import default_jobs
@@ -118,8 +126,13 @@ def dse(
             {"--n": n, "--dataset": dataset, "--replicates": replicates,
              "--verify-hdl": verify_hdl, "--no-synth": no_synth, "--seed": seed}
         )  # fmt: skip
-        _project(spec, objective, output, as_json)
+        _project(spec, objective, output, as_json, horizon)
         return
+    if horizon is not None:
+        raise RfcError(
+            "--horizon sets how long a project is simulated; give the project's SPEC",
+            hint="the sweep's horizons are the datasets' (100 us large, 500 us corner cases)",
+        )
     if objective is not None:
         raise RfcError(
             "--objective ranks a project's schedulers; give the project's SPEC",
@@ -220,7 +233,9 @@ def _print_sweep(result, console: Console) -> None:
         console.print(table)
 
 
-def _project(spec: Path, objective: str | None, output: Path | None, as_json: bool) -> None:
+def _project(
+    spec: Path, objective: str | None, output: Path | None, as_json: bool, horizon: int | None
+) -> None:
     from rfc.driver import compile_spec
     from rfc.dse.objective import DEFAULT_OBJECTIVE, parse_objective
     from rfc.dse.output import recommendation_document, write_recommendation
@@ -228,7 +243,23 @@ def _project(spec: Path, objective: str | None, output: Path | None, as_json: bo
 
     criteria = parse_objective(objective or ",".join(DEFAULT_OBJECTIVE))
     design = compile_spec(str(spec))
-    recommendation = recommend(design, criteria)
+    console = Console(stderr=True, highlight=False)
+    with Progress(
+        TextColumn("simulating candidates"),
+        BarColumn(),
+        TextColumn("{task.completed}/{task.total}"),
+        TimeElapsedColumn(),
+        console=console,
+        transient=True,
+        disable=as_json or not console.is_terminal,
+    ) as bar:
+        task = bar.add_task("candidates", total=None)
+        recommendation = recommend(
+            design,
+            criteria,
+            horizon=horizon,
+            progress=lambda done, total: bar.update(task, completed=done, total=total),
+        )
     report = recommendation_document(design.project.name, recommendation)
     if output is not None:
         write_recommendation(report, output)
@@ -239,7 +270,8 @@ def _project(spec: Path, objective: str | None, output: Path | None, as_json: bo
     traffic = recommendation.traffic
     console.print(
         f"[bold]{design.project.name}[/]: {traffic.n} publishers, {traffic.cycles} cycles "
-        f"simulated; objective {', '.join(c.name for c in criteria)}"
+        f"simulated ({min(traffic.messages)} to {max(traffic.messages)} messages each); "
+        f"objective {', '.join(c.name for c in criteria)}"
     )
     table = Table()
     table.add_column("rank", justify="right")

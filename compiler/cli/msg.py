@@ -11,6 +11,7 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
+from rfc.cli.notes import note_skipped, note_skipped_topics
 from rfc.errors import RfcError
 from rfc.lib.converters.loopback_run import LoopbackReport, loopback
 from rfc.lower.writer import kept_in
@@ -31,7 +32,9 @@ DistroOption = Annotated[
 ]
 MsgPathOption = Annotated[
     list[Path] | None,
-    typer.Option("--msg-path", help="Directory of your own <package>/msg/*.msg (repeatable)."),
+    typer.Option(
+        "--msg-path", help="Directory of your own <package>/msg/*.msg or *.idl (repeatable)."
+    ),
 ]
 BagTypesOption = Annotated[
     list[Path] | None,
@@ -53,6 +56,8 @@ def show(
     as_json: Annotated[bool, typer.Option("--json", help="Print one JSON document.")] = False,
 ) -> None:
     """Show the flattened layout of a message: leaf fields, widths, byte offsets."""
+    for path in bag or ():
+        note_skipped_topics(path)
     types = message_types(
         middleware,
         distro,
@@ -69,7 +74,7 @@ def show(
 
 
 def layout_json(layout: Layout, distro: str) -> dict[str, Any]:
-    """The JSON form of a layout (DESIGN.md §9), with `align`, `kind`, `bound` and `element`."""
+    """A layout's JSON (docs/architecture.md), plus `align`, `kind`, `bound` and `element`."""
     return {
         "type": layout.display_name,
         "middleware": layout.middleware.value,
@@ -159,20 +164,39 @@ def loopback_command(
     keep: Annotated[
         Path | None, typer.Option(help="Keep the generated VHDL and simulation files here.")
     ] = None,
+    msg_path: MsgPathOption = None,
+    include: Annotated[
+        list[str] | None,
+        typer.Option(help="Only these fields pass the converters (wildcards: *)."),
+    ] = None,
+    exclude: Annotated[
+        list[str] | None,
+        typer.Option(help="These fields do not; they come out at their defaults."),
+    ] = None,
     as_json: Annotated[bool, typer.Option("--json", help="Print one JSON document.")] = False,
 ) -> None:
     """Round-trip a bag's messages through the generated subscriber and publisher (GHDL).
 
-    Exit status 1 when any message does not come out as rosbags serializes it.
+    Exit status 1 when any message does not come out as rosbags serializes it (with the
+    fields left out by --include/--exclude at their defaults).
     """
     if not bag.exists():
         raise RfcError(f"bag '{bag}' does not exist", hint="give the path of a .bag, .mcap or .db3")
-    options = {"topic": topic, "middleware": middleware, "width": width, "count": count}
+    options = {
+        "topic": topic,
+        "middleware": middleware,
+        "width": width,
+        "count": count,
+        "msg_paths": tuple(msg_path or ()),
+        "include": tuple(include or ()),
+        "exclude": tuple(exclude or ()),
+    }
     if keep is None:
         report = loopback(type_name, bag, **options)
     else:
         with kept_in(keep, "rfc msg loopback") as scratch:
             report = loopback(type_name, bag, **options, workdir=scratch)
+    note_skipped(bag, report.skipped)
     if as_json:
         print(json.dumps(report.as_json(), indent=2))
     else:

@@ -24,6 +24,7 @@ from rich.console import Console
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
+from rfc.cli.notes import note_skipped_topics
 from rfc.errors import RfcError, did_you_mean
 from rfc.runtime.core import DEFAULT_DEPTH, QueuePolicy
 from rfc.runtime.stall import DEFAULT_STALL_CYCLES
@@ -50,6 +51,7 @@ sim_app = typer.Typer()
 
 @sim_app.command("sim")
 def sim(
+    ctx: typer.Context,
     spec: Annotated[Path, typer.Argument(metavar="SPEC", help="The system specification.")],
     bag: Annotated[
         Path, typer.Option("--bag", metavar="IN", help="Input bag: ROS 1 .bag, ROS 2 .mcap/.db3.")
@@ -91,6 +93,18 @@ def sim(
     force: Annotated[
         bool, typer.Option("--force", help="Replace OUT even when it exists and is not a bag.")
     ] = False,
+    limit: Annotated[
+        int | None,
+        typer.Option("--limit", min=1, metavar="N", help="Replay only the bag's first N messages."),
+    ] = None,
+    topics: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--topics",
+            metavar="T",
+            help="Replay only these subscribed topics (repeatable, or comma-separated).",
+        ),
+    ] = None,
 ) -> None:
     """Replay a bag through the whole system and write each publisher's messages to OUT."""
     from rfc.driver import compile_spec
@@ -110,7 +124,10 @@ def sim(
         project.middleware, project.distro, tuple(str(p) for p in project.msg_paths), (str(bag),)
     )
     plan = DesignPlan(design)
-    topic_names = _match_topics(plan, bag, types)
+    note_skipped_topics(bag)
+    topic_names = _chosen_topics(_match_topics(plan, bag, types), topics)
+    if limit is not None or topics:
+        bag = _subset(ctx, bag, types, topic_names, limit)
     queues = QueueConfig(queue, depth)
     runtime = Runtime(plan, queues)  # finds every ROS-SW function before anything runs
     run = _Run(
@@ -232,6 +249,40 @@ class _Run:
                 seed=self.seed,
                 progress=progress,
             )
+
+
+def _chosen_topics(topic_names: dict[str, str], topics: list[str] | None) -> dict[str, str]:
+    """Keep the bag topics whose spec topics `--topics` names (all when it names none)."""
+    wanted = [t.strip() for entry in topics or () for t in entry.split(",") if t.strip()]
+    subscribed = {spec.lstrip("/"): spec for spec in topic_names.values()}
+    for topic in wanted:
+        if topic.lstrip("/") not in subscribed:
+            raise RfcError(
+                f"--topics names '{topic}', which no subscriber of the spec takes",
+                hint=did_you_mean(topic, subscribed.values())
+                or f"the subscribed topics are {', '.join(sorted(subscribed.values()))}",
+            )
+    chosen = {t.lstrip("/") for t in wanted}
+    return {
+        found: spec
+        for found, spec in topic_names.items()
+        if not chosen or spec.lstrip("/") in chosen
+    }
+
+
+def _subset(
+    ctx: typer.Context,
+    bag: Path,
+    types: MessageTypes,
+    topic_names: dict[str, str],
+    limit: int | None,
+) -> Path:
+    """The part of the bag to replay, in a folder removed when the command ends."""
+    from rfc.messages.bag_subset import write_subset
+
+    folder = Path(tempfile.mkdtemp(prefix="rfc-sim-bag-"))
+    ctx.call_on_close(lambda: shutil.rmtree(folder, ignore_errors=True))
+    return write_subset(bag, types, topic_names, limit, folder)
 
 
 def _match_topics(plan: DesignPlan, bag: Path, types: MessageTypes) -> dict[str, str]:

@@ -55,9 +55,14 @@ def recommendation_document(project: str, recommendation: Recommendation) -> dic
         "objective": [criterion.name for criterion in recommendation.objective],
         "cycles": traffic.cycles,
         "publishers": [
-            {"name": name, "transfer_beats": t, "period": p, "deadline": d}
-            for name, t, p, d in zip(
-                traffic.publishers, traffic.transfer, traffic.period, traffic.deadline, strict=True
+            {"name": name, "transfer_beats": t, "period": p, "deadline": d, "messages": m}
+            for name, t, p, d, m in zip(
+                traffic.publishers,
+                traffic.transfer,
+                traffic.period,
+                traffic.deadline,
+                traffic.messages,
+                strict=True,
             )
         ],
         "ranking": [_candidate(candidate) for candidate in recommendation.ranking],

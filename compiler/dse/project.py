@@ -1,12 +1,13 @@
 """A scheduler for one project: its publishers' traffic, simulated under every candidate.
 
-The traffic follows DESIGN.md §7 with the project's own numbers: publisher i sends
-``transfer_beats`` beats (from its message layout and the bus width), then stays idle for its
-period minus its transfer, and must finish within its deadline (default: the period); all are
-released at cycle 0, the worst case of simultaneous arrival. One run of
-`simulation_cycles` cycles per candidate, with the counter widths the hardware would get.
-Candidates are the six algorithms and, with two or more publishers, the two-level
-combinations of the paper's most promising pair (LRU over LOEDF and LST halves).
+The traffic follows the paper's §7.2 (docs/dse.md) with the project's own numbers: publisher
+i sends ``transfer_beats`` beats (from its message layout and the bus width), then stays idle
+for its period minus its transfer, and must finish within its deadline (default: the period);
+all are released at cycle 0, the worst case of simultaneous arrival. One run per candidate,
+over `ProjectTraffic.cycles` (enough for `MESSAGES_RANKED` messages of the slowest
+publisher), with the counter widths the hardware would get. Candidates are the six algorithms
+and, with two or more publishers, the two-level combinations of the paper's most promising
+pair (LRU over LOEDF and LST halves).
 """
 
 from __future__ import annotations
@@ -25,10 +26,11 @@ from rfc.ir.model import Design
 from rfc.lib.schedulers.model import tree_of
 from rfc.lib.schedulers.spec import AnySchedulerSpec, parse_scheduler
 
-#: Shortest and longest simulation of a project, in cycles.
-MIN_CYCLES, MAX_CYCLES = 10_000, 200_000
-#: Periods of the slowest publisher simulated (within the bounds above).
-PERIODS_SIMULATED = 20
+#: Shortest simulation of a project, in cycles.
+MIN_CYCLES = 10_000
+#: Messages the slowest publisher sends within the simulated horizon (at least `MIN_CYCLES`),
+#: so that every task set is ranked on enough messages whatever its periods.
+MESSAGES_RANKED = 10
 
 
 @dataclass(frozen=True)
@@ -39,6 +41,8 @@ class ProjectTraffic:
     transfer: tuple[int, ...]
     period: tuple[int, ...]
     deadline: tuple[int, ...]
+    horizon: int | None = None
+    """Cycles to simulate, when the user chose them (``rfc dse --horizon``)."""
 
     @property
     def n(self) -> int:
@@ -52,12 +56,19 @@ class ProjectTraffic:
 
     @property
     def cycles(self) -> int:
-        """Simulated cycles: `PERIODS_SIMULATED` periods of the slowest publisher, bounded."""
-        return min(MAX_CYCLES, max(MIN_CYCLES, PERIODS_SIMULATED * max(self.period)))
+        """Simulated cycles: the horizon chosen, else `MESSAGES_RANKED` slowest periods."""
+        if self.horizon is not None:
+            return self.horizon
+        return max(MIN_CYCLES, MESSAGES_RANKED * max(self.period))
+
+    @property
+    def messages(self) -> tuple[int, ...]:
+        """Messages each publisher releases within the simulated cycles."""
+        return tuple(-(-self.cycles // period) for period in self.period)
 
 
-def project_traffic(design: Design) -> ProjectTraffic:
-    """The publishers' timing from the holistic model.
+def project_traffic(design: Design, horizon: int | None = None) -> ProjectTraffic:
+    """The publishers' timing from the holistic model, simulated for `horizon` cycles if given.
 
     Raises:
         RfcError: A publisher has no period (the DSE cannot simulate it), or none exists.
@@ -85,6 +96,7 @@ def project_traffic(design: Design) -> ProjectTraffic:
         tuple(i.transfer_beats for i in inputs),
         tuple(int(i.period) for i in inputs),
         tuple(int(i.deadline if i.deadline is not None else i.period) for i in inputs),
+        horizon,
     )
 
 
@@ -142,14 +154,29 @@ def recommend(
     design: Design,
     objective: Sequence[Criterion],
     names: Sequence[str] | None = None,
+    *,
+    horizon: int | None = None,
+    progress: Callable[[int, int], None] | None = None,
 ) -> Recommendation:
     """Rank `names` (default `candidates`) for the project's publishers by `objective`.
+
+    Args:
+        design: The holistic model.
+        objective: The ranking criteria, most important first.
+        names: The schedulers to rank.
+        horizon: Cycles to simulate (default: `MESSAGES_RANKED` periods of the slowest).
+        progress: Called with (candidates simulated, candidates) as the simulation goes.
 
     Raises:
         RfcError: A publisher lacks the timing the simulation needs.
     """
-    traffic = project_traffic(design)
-    evaluated = [evaluate(name, traffic) for name in names or candidates(traffic.n)]
+    traffic = project_traffic(design, horizon)
+    chosen = list(names or candidates(traffic.n))
+    evaluated = []
+    for name in chosen:
+        evaluated.append(evaluate(name, traffic))
+        if progress is not None:
+            progress(len(evaluated), len(chosen))
     ranking = rank(evaluated, objective, _resources(traffic))
     return Recommendation(
         traffic, tuple(objective), tuple(ranking), tuple(reasons(ranking, objective))

@@ -9,20 +9,30 @@ from __future__ import annotations
 
 import tempfile
 from collections.abc import Iterable, Iterator, Mapping, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
 from typing import Any
 
 import numpy as np
-from rosbags.highlevel import AnyReader, AnyReaderError
-from rosbags.interfaces import Nodetype
+from rosbags.interfaces import Connection, MessageDefinitionFormat, Nodetype
+from rosbags.rosbag1 import Reader as Rosbag1Reader
+from rosbags.rosbag1 import ReaderError as Rosbag1ReaderError
 from rosbags.rosbag1 import Writer as Rosbag1Writer
 from rosbags.rosbag1 import WriterError as Rosbag1WriterError
+from rosbags.rosbag2 import Reader as Rosbag2Reader
+from rosbags.rosbag2 import ReaderError as Rosbag2ReaderError
 from rosbags.rosbag2 import StoragePlugin, WriterError
 from rosbags.rosbag2 import Writer as Rosbag2Writer
 from rosbags.serde import SerdeError
-from rosbags.typesys import Stores, TypesysError, get_types_from_msg, get_typestore
+from rosbags.typesys import (
+    Stores,
+    TypesysError,
+    get_types_from_idl,
+    get_types_from_msg,
+    get_typestore,
+)
 from rosbags.typesys.base import normalize_fieldname
 from rosbags.typesys.store import Typestore
 
@@ -122,26 +132,46 @@ class MessageTypes:
         self._fields: dict[str, tuple[FieldDef, ...]] = {}
         self.cache: dict[Any, Any] = {}
         """Results derived from these definitions (layouts), kept with them."""
-        for directory in msg_paths:
-            self._register(_definitions_in_directory(Path(directory)), str(directory))
+        self.unresolved: dict[str, str] = {}
+        """Types whose definitions need a type nobody defines, with the reason; only using
+        them is an error."""
+        found: dict[str, tuple[dict[str, Any], str]] = {}
         for bag in bags:
-            self._register(_definitions_in_bag(Path(bag), self._store), str(bag))
+            found.update(_definitions_in_bag(Path(bag), self._store))
+        for directory in msg_paths:  # the user's own definitions win over a bag's
+            found.update(_definitions_in_directory(Path(directory)))
+        self._register(found)
 
-    def _register(self, definitions: dict[str, Any], origin: str) -> None:
+    def _register(self, found: dict[str, tuple[Any, str]]) -> None:
+        """Register every definition whose references resolve, in any order of sources."""
+        known = set(self._store.fielddefs) | set(found)
+        missing: dict[str, str] = {}
+        for name, (definition, origin) in found.items():
+            for field_name, desc in definition[1]:
+                ref = next((r for r in _referenced_types(desc) if r not in known), None)
+                if ref is not None:
+                    missing[name] = (
+                        f"{origin}: {name} field '{field_name}' has type '{ref}', which no "
+                        "definition provides"
+                    )
+        while True:  # a type that uses an unresolved one is unresolved too
+            more = {
+                name: f"{found[name][1]}: {name} uses {ref}, which is unresolved"
+                for name in found.keys() - missing.keys()
+                for _, desc in found[name][0][1]
+                for ref in _referenced_types(desc)
+                if ref in missing
+            }
+            if not more:
+                break
+            missing.update(more)
+        self.unresolved = missing
         try:
-            self._store.register(definitions)
+            self._store.register(
+                {name: definition for name, (definition, _) in found.items() if name not in missing}
+            )
         except TypesysError as exc:
-            raise RfcError(f"{origin}: {exc}") from None
-        known = self._store.fielddefs
-        for name, (_, fields) in definitions.items():
-            for field_name, desc in fields:
-                for ref in _referenced_types(desc):
-                    if ref not in known:
-                        raise RfcError(
-                            f"{origin}: {name} field '{field_name}' has type '{ref}', "
-                            "which no definition provides",
-                            hint="add the directory that holds it with --msg-path",
-                        )
+            raise RfcError(str(exc)) from None
 
     def names(self) -> list[str]:
         """Return every canonical type name, sorted."""
@@ -156,6 +186,11 @@ class MessageTypes:
         canonical = canonical_name(name)
         if canonical in self._store.fielddefs:
             return canonical
+        if canonical in self.unresolved:
+            raise RfcError(
+                f"message type '{name}' cannot be used: {self.unresolved[canonical]}",
+                hint="add the directory that defines it with --msg-path",
+            )
         known = self.names()
         # Match in the user's own spelling (Name, pkg/Name or pkg/msg/Name), suggest full names.
         parts = name.strip("/").count("/") + 1
@@ -165,10 +200,18 @@ class MessageTypes:
             by_spelling.setdefault(spelled(known_name), []).append(known_name)
         matches = [n for key in closest(name, by_spelling) for n in by_spelling[key]]
         shown = [n if parts == 3 else _short_name(n) for n in matches[:3]]
-        hint = ("did you mean " + " or ".join(f"'{n}'" for n in shown) + "?") if shown else None
+        own = "add the directory of your own .msg/.idl files with --msg-path"
+        suggestion = "did you mean " + " or ".join(f"'{n}'" for n in shown) + "?"
+        package = canonical.split("/")[0]
+        if not shown:
+            hint = own
+        elif any(n.startswith(f"{package}/") for n in known):
+            hint = suggestion
+        else:  # a package no store knows: most likely the user's own
+            hint = f"{suggestion} If it is your own type, {own}"
         raise RfcError(
             f"unknown message type '{name}' for {self.middleware.label} {self.distro}",
-            hint=hint or "add the directory of your own .msg files with --msg-path",
+            hint=hint,
         )
 
     def definition(self, canonical: str) -> tuple[str, str]:
@@ -286,34 +329,113 @@ def _referenced_types(desc: tuple[Any, Any]) -> Iterator[str]:
         yield from _referenced_types(detail[0])
 
 
-def _definitions_in_directory(directory: Path) -> dict[str, Any]:
+def _definitions_in_directory(directory: Path) -> dict[str, tuple[Any, str]]:
+    """The ``.msg`` and ``.idl`` definitions under `directory`, each with the file it came from."""
     if not directory.is_dir():
         raise RfcError(f"message directory '{directory}' does not exist")
-    files = sorted(directory.rglob("*.msg"))
+    files = sorted([*directory.rglob("*.msg"), *directory.rglob("*.idl")])
     if not files:
         raise RfcError(
-            f"message directory '{directory}' holds no .msg files",
+            f"message directory '{directory}' holds no .msg or .idl files",
             hint="point --msg-path at a folder containing <package>/msg/<Name>.msg",
         )
-    definitions: dict[str, Any] = {}
+    definitions: dict[str, tuple[Any, str]] = {}
     for path in files:
         package = path.parent.parent.name if path.parent.name == "msg" else path.parent.name
         try:
-            definitions.update(get_types_from_msg(path.read_text(), f"{package}/msg/{path.stem}"))
+            if path.suffix == ".idl":
+                parsed = get_types_from_idl(path.read_text())
+            else:
+                parsed = get_types_from_msg(path.read_text(), f"{package}/msg/{path.stem}")
         except TypesysError as exc:
             raise RfcError(f"{path}: not a valid message definition: {exc}") from None
+        definitions.update({name: (fields, str(path)) for name, fields in parsed.items()})
     return definitions
 
 
-def _definitions_in_bag(bag: Path, store: Typestore) -> dict[str, Any]:
+@dataclass(frozen=True)
+class _Bag:
+    """An open bag: its message connections, their definitions, and what is not a message.
+
+    Attributes:
+        reader: The rosbags reader (ROS 1 or ROS 2).
+        connections: The connections that carry messages.
+        definitions: The message definitions embedded in the bag.
+        skipped: ``topic (type)`` of each connection whose schema is not a message (a
+            service or an action), left out.
+    """
+
+    reader: Any
+    connections: tuple[Connection, ...]
+    definitions: dict[str, Any]
+    skipped: tuple[str, ...]
+
+
+@contextmanager
+def _open_bag(path: Path) -> Iterator[_Bag]:
+    """Open a bag, leaving out the connections whose schemas are services or actions."""
+    if not path.exists():
+        raise RfcError(f"bag '{path}' does not exist")
     try:
-        with AnyReader([bag], default_typestore=store) as reader:
-            fielddefs = reader.typestore.fielddefs
-    except FileNotFoundError:
-        raise RfcError(f"bag '{bag}' does not exist") from None
-    except (AnyReaderError, TypesysError) as exc:
-        raise RfcError(f"cannot read message definitions from bag '{bag}': {exc}") from None
-    return {name: fielddefs[name] for name in fielddefs if name not in store.fielddefs}
+        reader = Rosbag1Reader(path) if path.suffix == ".bag" else Rosbag2Reader(path)
+        with reader:
+            connections, definitions, skipped = [], {}, []
+            for connection in reader.connections:
+                try:
+                    definitions.update(_embedded_definitions(connection))
+                except TypesysError as exc:
+                    if not _is_service_or_action(connection):
+                        raise RfcError(
+                            f"cannot read the definition of {connection.msgtype} in bag "
+                            f"'{path}': {exc}"
+                        ) from None
+                    skipped.append(f"{connection.topic} ({connection.msgtype})")
+                    continue
+                connections.append(connection)
+            yield _Bag(reader, tuple(connections), definitions, tuple(skipped))
+    except (Rosbag1ReaderError, Rosbag2ReaderError) as exc:
+        raise RfcError(f"cannot read bag '{path}': {exc}") from None
+
+
+def _embedded_definitions(connection: Connection) -> dict[str, Any]:
+    """The definitions a connection carries (as rosbags' own reader parses them)."""
+    definition = connection.msgdef
+    if definition.format == MessageDefinitionFormat.NONE or not definition.data.strip():
+        return {}
+    if definition.format == MessageDefinitionFormat.MSG:
+        return dict(get_types_from_msg(definition.data, connection.msgtype))
+    separator = "=" * 80 + "\n"
+    if not definition.data.startswith(f"{separator}IDL: "):
+        return dict(get_types_from_idl(definition.data))
+    found: dict[str, Any] = {}
+    for part in definition.data.split(separator)[1:]:
+        found.update(get_types_from_idl(part.split("\n", 1)[1]))
+    return found
+
+
+def _is_service_or_action(connection: Connection) -> bool:
+    kind = connection.msgtype.split("/")[1:2]
+    return kind in (["srv"], ["action"]) or "\n---" in connection.msgdef.data
+
+
+def skipped_topics(path: str | Path) -> tuple[str, ...]:
+    """The bag's topics left out because their schemas are services or actions, not messages.
+
+    Raises:
+        RfcError: The bag is missing or unreadable.
+    """
+    with _open_bag(Path(path)) as bag:
+        return bag.skipped
+
+
+def _definitions_in_bag(bag: Path, store: Typestore) -> dict[str, tuple[Any, str]]:
+    with _open_bag(bag) as opened:
+        definitions = opened.definitions
+    return {
+        name: (fields, str(bag))
+        for name, fields in definitions.items()
+        if name not in store.fielddefs
+    }
 
 
 @cache
@@ -342,26 +464,30 @@ def read_bag(
 ) -> Iterator[BagMessage]:
     """Yield the messages of a ROS 1 or ROS 2 bag in time order, optionally of some topics only.
 
+    Topics whose schemas are services or actions are left out (`skipped_topics` names them).
+
     Raises:
         RfcError: The bag is missing or unreadable, or a topic asked for is not in it.
     """
     wanted = set(topics)
-    try:
-        with AnyReader([Path(path)], default_typestore=types._store) as reader:
-            present = {c.topic for c in reader.connections}
-            if missing := sorted(wanted - present):
-                raise RfcError(
-                    f"bag '{path}' has no topic '{missing[0]}'",
-                    hint=did_you_mean(missing[0], present)
-                    or f"its topics are {', '.join(sorted(present))}",
-                )
-            connections = [c for c in reader.connections if not wanted or c.topic in wanted]
-            for connection, timestamp, raw in reader.messages(connections=connections):
+    with _open_bag(Path(path)) as bag:
+        present = {c.topic for c in bag.connections}
+        if missing := sorted(wanted - present):
+            raise RfcError(
+                f"bag '{path}' has no topic '{missing[0]}'",
+                hint=did_you_mean(missing[0], present) or _topics_hint(present),
+            )
+        connections = [c for c in bag.connections if not wanted or c.topic in wanted]
+        try:
+            for connection, timestamp, raw in bag.reader.messages(connections=connections):
                 yield BagMessage(connection.topic, connection.msgtype, timestamp, bytes(raw))
-    except FileNotFoundError:
-        raise RfcError(f"bag '{path}' does not exist") from None
-    except AnyReaderError as exc:
-        raise RfcError(f"cannot read bag '{path}': {exc}") from None
+        except (Rosbag1ReaderError, Rosbag2ReaderError) as exc:
+            raise RfcError(f"cannot read bag '{path}': {exc}") from None
+
+
+def _topics_hint(present: Iterable[str]) -> str:
+    names = sorted(present)
+    return f"its topics are {', '.join(names)}" if names else "it holds no message topics"
 
 
 def bag_topics(path: str | Path, types: MessageTypes, *, counts: bool = False) -> dict[str, Any]:
@@ -370,19 +496,14 @@ def bag_topics(path: str | Path, types: MessageTypes, *, counts: bool = False) -
     Raises:
         RfcError: The bag is missing or unreadable.
     """
-    try:
-        with AnyReader([Path(path)], default_typestore=types._store) as reader:
-            found: dict[str, Any] = {}
-            for connection in reader.connections:
-                if counts:
-                    found[connection.topic] = found.get(connection.topic, 0) + connection.msgcount
-                else:
-                    found[connection.topic] = connection.msgtype
-            return found
-    except FileNotFoundError:
-        raise RfcError(f"bag '{path}' does not exist") from None
-    except AnyReaderError as exc:
-        raise RfcError(f"cannot read bag '{path}': {exc}") from None
+    with _open_bag(Path(path)) as bag:
+        found: dict[str, Any] = {}
+        for connection in bag.connections:
+            if counts:
+                found[connection.topic] = found.get(connection.topic, 0) + connection.msgcount
+            else:
+                found[connection.topic] = connection.msgtype
+        return found
 
 
 #: Bag formats rfc writes, by the suffix of the path asked for.

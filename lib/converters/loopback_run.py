@@ -13,7 +13,7 @@ from __future__ import annotations
 import tempfile
 import warnings
 from collections.abc import Iterator, Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -24,16 +24,20 @@ from rfc.lib.converters.loopback import LOOPBACK, loopback_ports, rfc_loopback
 from rfc.lib.converters.plan import plan
 from rfc.lib.converters.steps import Plan
 from rfc.lib.converters.toplevel import elaboration, port_signals, top_block
-from rfc.messages.codec import FrameError, decode
+from rfc.messages.codec import FrameError, Values, decode, default_values
 from rfc.messages.layout import FieldKind, Layout, flatten
 from rfc.messages.limits import Limits
 from rfc.messages.rosbags_adapter import (
     BagMessage,
     MessageTypes,
     Middleware,
+    canonical_name,
     message_types,
     read_bag,
+    skipped_topics,
 )
+from rfc.messages.selection import select
+from rfc.messages.values import message_to_values, values_to_message
 from rfc.toolchain import GhdlError, convert_myhdl, simulate
 
 TESTBENCH = Path(__file__).parent / "hdl" / "loopback_tb.vhd"
@@ -58,12 +62,14 @@ class LoopbackResult:
 
 @dataclass(frozen=True)
 class LoopbackReport:
-    """All messages of a type through the loopback (the JSON of DESIGN.md §9)."""
+    """All messages of a type through the loopback (its JSON: docs/architecture.md)."""
 
     type_name: str
     middleware: Middleware
     width: int
     results: tuple[LoopbackResult, ...]
+    skipped: tuple[str, ...] = ()
+    """Topics of the bag left out as services or actions (``topic (type)``)."""
 
     @property
     def equal(self) -> bool:
@@ -104,6 +110,9 @@ def loopback(
     width: int = 64,
     count: int | None = None,
     workdir: Path | None = None,
+    msg_paths: Sequence[Path] = (),
+    include: Sequence[str] = (),
+    exclude: Sequence[str] = (),
 ) -> LoopbackReport:
     """Stream the bag's messages of `type_name` through a subscriber→publisher loopback.
 
@@ -116,6 +125,10 @@ def loopback(
         count: Only the first `count` messages.
         workdir: Keep the generated HDL and simulation files here (a temporary folder
             otherwise).
+        msg_paths: Directories of definitions the bag does not embed.
+        include: Only these fields go through the accelerator side (dotted paths).
+        exclude: These fields do not; the publisher sends their defaults, and the expected
+            frames have them too.
 
     Returns:
         One result per message.
@@ -130,17 +143,19 @@ def loopback(
             f"bag '{bag}' was recorded with {recorded.label}, not {middleware.label}",
             hint=f"use --middleware {recorded.value} or leave it out",
         )
-    types = message_types(recorded, None, (), (str(bag),))
+    types = message_types(recorded, None, tuple(str(p) for p in msg_paths), (str(bag),))
     canonical = types.resolve(type_name)
     messages = _messages(bag, types, canonical, topic, count)
-    layout = flatten(types, canonical)
+    layout = select(flatten(types, canonical), include, exclude)
     values = [_decoded(layout, m) for m in messages]
     longest_frame = max(len(m.data) for m in messages)
     converters = plan(layout, width, fitted_limits(layout, values, longest_frame))
     if workdir is not None:
-        return _run(converters, types, messages, workdir)
-    with tempfile.TemporaryDirectory(prefix="rfc-loopback-") as scratch:
-        return _run(converters, types, messages, Path(scratch))
+        report = _run(converters, types, messages, workdir)
+    else:
+        with tempfile.TemporaryDirectory(prefix="rfc-loopback-") as scratch:
+            report = _run(converters, types, messages, Path(scratch))
+    return replace(report, skipped=skipped_topics(bag))
 
 
 def _messages(
@@ -148,13 +163,17 @@ def _messages(
 ) -> list[BagMessage]:
     found, present = [], set()
     for message in read_bag(bag, types, [topic] if topic else ()):
-        name = types.resolve(message.type_name)
+        name = canonical_name(message.type_name)  # other types need no definition
         present.add(types.display_name(name))
         if name == canonical and (count is None or len(found) < count):
             found.append(message)
     if not found:
         wanted = types.display_name(canonical)
         where = f"topic '{topic}' of bag '{bag}'" if topic else f"bag '{bag}'"
+        if not present:
+            raise RfcError(
+                f"{where} holds no messages at all", hint="record some, or give another bag"
+            )
         raise RfcError(
             f"{where} has no message of type {wanted}",
             hint=did_you_mean(wanted, present) or f"it has {', '.join(sorted(present))}",
@@ -262,6 +281,7 @@ def run_frames(
         RfcError: The simulation did not run.
     """
     width = converters.width
+    workdir = workdir.resolve()  # GHDL runs elsewhere: a relative path would point astray
     workdir.mkdir(parents=True, exist_ok=True)
     with elaboration(), warnings.catch_warnings():
         warnings.simplefilter("ignore", ToVHDLWarning)
@@ -291,19 +311,36 @@ def _run(
     outputs = run_frames(converters, [m.data for m in messages], workdir)
     canonical = converters.layout.type_name
     results = []
+    layout = converters.layout
     for index, (message, (sent, timing)) in enumerate(zip(messages, outputs, strict=False)):
-        # A recorded frame's padding may hold garbage: the reference is rosbags' own bytes.
-        expected = types.serialize(types.deserialize(message.data, canonical), canonical)
+        # A recorded frame's padding may hold garbage: the reference is rosbags' own bytes,
+        # with the fields left out of the selection at their defaults.
+        received = types.deserialize(message.data, canonical)
+        if any(not field.selected for field in layout.fields):
+            values = _selected_only(layout, message_to_values(received, layout))
+            received = values_to_message(values, layout, types)
+        expected = types.serialize(received, canonical)
         results.append(
             LoopbackResult(
                 index, sent == expected, timing.subscriber_cycles, timing.publisher_cycles
             )
         )
     results += [LoopbackResult(i, False, 0, 0) for i in range(len(results), len(messages))]
-    layout = converters.layout
     return LoopbackReport(
         layout.display_name, layout.middleware, 8 * converters.width, tuple(results)
     )
+
+
+def _selected_only(layout: Layout, values: Values) -> Values:
+    """The values with every leaf outside the selection at its default (as a publisher sends)."""
+    defaults = default_values(layout)
+    kept: Values = {}
+    for field in layout.fields:
+        value = values[field.path] if field.selected else defaults[field.path]
+        if field.selected and field.element is not None:
+            value = [_selected_only(field.element, item) for item in value]
+        kept[field.path] = value
+    return kept
 
 
 def _beats(frame: bytes, width: int) -> str:

@@ -8,8 +8,10 @@ from __future__ import annotations
 
 import csv
 import json
+import sys
 from pathlib import Path
 
+import pexpect
 import pytest
 
 from rfc.dse.kernel import METRICS
@@ -170,3 +172,35 @@ def test_build_uses_the_recommendation(tmp_path):
     report = (tmp_path / "build" / "report.md").read_text()
     assert "## Scheduler: LOEDF" in report
     assert "Chosen by resolve-scheduler: rfc dse:" in report
+
+
+def test_dse_spec_horizon_sets_the_cycles_simulated():
+    result = run_rfc(
+        "dse", EXAMPLES / "sensor_hub" / "SensorHub.yaml", "--horizon", "20000", "--json"
+    )
+    assert result.returncode == 0, result.stderr
+    document = json.loads(result.stdout)
+    assert document["cycles"] == 20_000
+    assert [p["messages"] for p in document["publishers"]] == [
+        -(-20_000 // p["period"]) for p in document["publishers"]
+    ]
+
+
+def test_dse_horizon_without_spec_is_refused():
+    result = run_rfc("dse", "--horizon", "20000", "--n", "2")
+    assert result.returncode == 1
+    assert "--horizon sets how long a project is simulated" in result.stderr
+
+
+@pytest.mark.parametrize("as_json", [True, False])
+def test_dse_spec_shows_progress_at_a_terminal_unless_json(as_json):
+    hub = EXAMPLES / "sensor_hub" / "SensorHub.yaml"
+    args = ["-m", "rfc", "dse", str(hub), "--horizon", "2000", *(["--json"] if as_json else [])]
+    output, status = pexpect.run(
+        sys.executable, args=args, withexitstatus=True, encoding="utf-8", timeout=300
+    )
+    assert status == 0, output
+    if as_json:
+        assert json.loads(output)["cycles"] == 2000  # nothing but the document on the terminal
+    else:
+        assert "simulating candidates" in output

@@ -1,4 +1,4 @@
-"""`rfc msg loopback`: the command-line contract of DESIGN.md §9, on the shared bags.
+"""`rfc msg loopback`: the command-line contract of docs/architecture.md, on the shared bags.
 
 The suite samples each bag (the first messages of a type); `tools/bench_converters.py
 --loopback` runs the whole bags at every width (figures in docs/converters.md).
@@ -9,6 +9,9 @@ from __future__ import annotations
 import json
 
 import pytest
+from rosbags.rosbag2 import StoragePlugin
+from rosbags.rosbag2 import Writer as Rosbag2Writer
+from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 from typer.testing import CliRunner
 
 import rfc.cli.msg
@@ -131,3 +134,45 @@ def test_a_mismatch_exits_1_after_printing_the_report(monkeypatch, tmp_path, as_
         assert [r["equal"] for r in doc["results"]] == [True, False]
     else:
         assert "differ (indices)" in result.stdout
+
+
+PAIR = "int32 a\nfloat64 b\nstring name\n"
+
+
+def pair_bag(tmp_path, values):
+    """A .db3 of my_msgs/msg/Pair recorded without definitions, and the folder defining it."""
+    (tmp_path / "defs" / "my_msgs" / "msg").mkdir(parents=True)
+    (tmp_path / "defs" / "my_msgs" / "msg" / "Pair.msg").write_text(PAIR)
+    store = get_typestore(Stores.ROS2_HUMBLE)
+    store.register(get_types_from_msg(PAIR, "my_msgs/msg/Pair"))
+    pair = store.types["my_msgs/msg/Pair"]
+    with Rosbag2Writer(tmp_path / "rec", version=9, storage_plugin=StoragePlugin.SQLITE3) as out:
+        connection = out.add_connection(
+            "/pair", "my_msgs/msg/Pair", msgdef="", rihs01="RIHS01_" + "0" * 64
+        )
+        for stamp, (a, b, name) in enumerate(values, 1):
+            out.write(connection, stamp, store.serialize_cdr(pair(a, b, name), "my_msgs/msg/Pair"))
+    (bag,) = (tmp_path / "rec").glob("*.db3")
+    return bag, tmp_path / "defs"
+
+
+def test_a_bag_without_definitions_loops_back_with_msg_path_exclude_and_a_relative_keep(tmp_path):
+    bag, defs = pair_bag(tmp_path, [(1, 2.5, "abc"), (-7, 0.125, "")])
+    missing = run_rfc("msg", "loopback", "my_msgs/msg/Pair", "--bag", bag)
+    assert missing.returncode == 1
+    assert "--msg-path" in missing.stderr
+    result = run_rfc(
+        "msg", "loopback", "my_msgs/msg/Pair", "--bag", bag, "--msg-path", defs,
+        "--exclude", "b", "--keep", "kept", "--json", cwd=tmp_path,
+    )  # fmt: skip
+    assert result.returncode == 0, result.stderr
+    doc = json.loads(result.stdout)
+    assert (doc["messages"], doc["equal"]) == (2, True)
+    assert (tmp_path / "kept" / "frames.txt").is_file()
+
+
+def test_a_bag_without_messages_says_so(tmp_path):
+    bag, defs = pair_bag(tmp_path, [])
+    result = run_rfc("msg", "loopback", "my_msgs/msg/Pair", "--bag", bag, "--msg-path", defs)
+    assert result.returncode == 1
+    assert "holds no messages at all" in result.stderr

@@ -1,10 +1,11 @@
-"""`rfc msg show`: the command-line contract of DESIGN.md §9."""
+"""`rfc msg show`: the command-line contract of docs/architecture.md."""
 
 from __future__ import annotations
 
 import json
 
 from tests.support.cli import run_rfc
+from tests.support.service_bag import SERVICE_TOPIC, bag_with_a_service_event
 
 
 def show_json(*args):
@@ -110,3 +111,11 @@ def test_version_and_module_entry():
     result = run_rfc("--version")
     assert result.returncode == 0
     assert result.stdout.startswith("rfc ")
+
+
+def test_a_bag_with_a_service_event_is_read_and_the_event_named(tmp_path):
+    bag, _ = bag_with_a_service_event(tmp_path)
+    result = run_rfc("msg", "show", "geometry_msgs/Point", "--bag", bag, "--json")
+    assert result.returncode == 0, result.stderr
+    assert [f["path"] for f in json.loads(result.stdout)["fields"]] == ["x", "y", "z"]
+    assert f"{SERVICE_TOPIC} is a service or action, not a message; skipped" in result.stderr

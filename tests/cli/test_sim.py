@@ -227,3 +227,58 @@ def test_a_software_function_failing_in_the_simulator_is_one_error(tmp_path, sma
     assert "ROS-SW accelerator 'Clear' raised ValueError: boom (call 1)" in result.stderr
     assert "Traceback" not in result.stderr
     assert not out.exists()
+
+
+TWO_TOPICS = """
+project: {name: TwoTopics, scheduler: LRU}
+accelerators:
+  - name: Pass
+    type: ROS-SW
+    sources: ./identity.py
+    reference: ./identity.py:identity
+    interface: {input: [{message: geometry_msgs/Point}], output: [{message: geometry_msgs/Point}]}
+blocks:
+  - {name: a_sub, type: ROS>accelerator, message: geometry_msgs/Point, topic: /a,
+     outgoing: [{name: a_acc}]}
+  - {name: b_sub, type: ROS>accelerator, message: geometry_msgs/Point, topic: /b,
+     outgoing: [{name: b_acc}]}
+  - {name: a_acc, type: Pass, outgoing: [{name: a_pub}]}
+  - {name: b_acc, type: Pass, outgoing: [{name: b_pub}]}
+  - {name: a_pub, type: accelerator>ROS, message: geometry_msgs/Point, topic: /a_out}
+  - {name: b_pub, type: accelerator>ROS, message: geometry_msgs/Point, topic: /b_out}
+"""
+
+
+def two_topic_system(tmp_path):
+    (tmp_path / "identity.py").write_text("def identity(message):\n    return message\n")
+    (tmp_path / "two.yaml").write_text(TWO_TOPICS)
+    types = message_types("ros2")
+    point = "geometry_msgs/msg/Point"
+    inputs = [
+        (topic, 1000 * i, types.serialize(types.build(point, {"x": i, "y": 0, "z": 0}), point))
+        for i in range(1, 9)
+        for topic in ("/a", "/b")
+    ]
+    write_bag(tmp_path / "in.mcap", types, {"/a": point, "/b": point}, inputs)
+    return tmp_path / "two.yaml", inputs
+
+
+def test_limit_and_topics_replay_only_the_first_messages_of_the_topics_named(tmp_path):
+    spec, inputs = two_topic_system(tmp_path)
+    account = sim(
+        spec, tmp_path / "in.mcap", tmp_path / "out.mcap", "--topics", "/b", "--limit", "3"
+    )
+    assert account["received"] == {"/b": 3}
+    assert account["published"] == {"/b_out": 3}
+    expected = [("/b_out", stamp, data) for topic, stamp, data in inputs if topic == "/b"][:3]
+    assert messages_of(tmp_path / "out.mcap") == expected
+
+
+def test_topics_must_be_subscribed(tmp_path):
+    spec, _ = two_topic_system(tmp_path)
+    result = run_rfc(
+        "sim", spec, "--bag", tmp_path / "in.mcap", "--out", tmp_path / "o.mcap", "--topics", "/c"
+    )
+    assert result.returncode == 1
+    assert "--topics names '/c', which no subscriber of the spec takes" in result.stderr
+    assert not (tmp_path / "o.mcap").exists()

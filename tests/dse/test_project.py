@@ -80,3 +80,27 @@ def test_without_periods_lru_and_for_one_publisher_pfp():
 
 def test_build_runs_resolve_scheduler_last():
     assert BUILD_PIPELINE[-1].name == "resolve-scheduler"
+
+
+def with_periods(design, periods):
+    scheduler = design.infrastructure.scheduler
+    inputs = tuple(
+        replace(i, period=p, deadline=None) for i, p in zip(scheduler.inputs, periods, strict=True)
+    )
+    infrastructure = replace(design.infrastructure, scheduler=replace(scheduler, inputs=inputs))
+    return replace(design, infrastructure=infrastructure)
+
+
+def test_long_periods_get_a_horizon_of_ten_messages_of_the_slowest_publisher(hub):
+    # 25-33 ms at 100 MHz: a fixed 2 ms horizon would see one message of each publisher
+    periods = (2_500_000, 2_600_000, 2_700_000, 2_800_000, 3_000_000, 3_300_000)
+    traffic = project_traffic(with_periods(hub, periods))
+    assert traffic.cycles >= 10 * 3_300_000
+    assert min(traffic.messages) >= 10
+    assert traffic.messages[0] == -(-traffic.cycles // 2_500_000)
+
+
+def test_a_horizon_given_is_the_horizon_simulated(hub):
+    assert project_traffic(hub, horizon=12_345).cycles == 12_345
+    recommendation = recommend(hub, parse_objective(TIMING), ["LRU"], horizon=400)
+    assert recommendation.traffic.messages == (2, 2, 1, 8, 8, 4)

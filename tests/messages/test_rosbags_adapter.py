@@ -13,9 +13,11 @@ from rfc.messages.rosbags_adapter import (
     canonical_name,
     message_types,
     read_bag,
+    skipped_topics,
     write_bag,
 )
 from tests.conftest import shared_file
+from tests.support.service_bag import SERVICE_TOPIC, bag_with_a_service_event
 
 
 def test_canonical_names():
@@ -40,7 +42,7 @@ def test_unknown_distro_is_an_error_with_a_suggestion():
 def test_msg_path_must_exist(tmp_path):
     with pytest.raises(RfcError, match="does not exist"):
         MessageTypes(msg_paths=[tmp_path / "nope"])
-    with pytest.raises(RfcError, match=r"holds no \.msg files"):
+    with pytest.raises(RfcError, match=r"holds no \.msg or \.idl files"):
         MessageTypes(msg_paths=[tmp_path])
 
 
@@ -52,13 +54,49 @@ def test_msg_path_with_a_broken_definition(tmp_path):
         MessageTypes(msg_paths=[tmp_path])
 
 
-def test_msg_path_with_a_missing_dependency(tmp_path):
+def test_a_missing_dependency_blocks_only_the_types_that_use_it(tmp_path):
     pkg = tmp_path / "my_msgs" / "msg"
     pkg.mkdir(parents=True)
     (pkg / "Uses.msg").write_text("other_msgs/Missing thing\n")
+    (pkg / "Wraps.msg").write_text("my_msgs/Uses inner\n")
+    (pkg / "Fine.msg").write_text("int32 a\n")
+    types = MessageTypes(msg_paths=[tmp_path])
+    assert [f.path for f in flatten(types, "my_msgs/Fine").fields] == ["a"]
     with pytest.raises(RfcError) as excinfo:
-        MessageTypes(msg_paths=[tmp_path])
+        types.resolve("my_msgs/Uses")
     assert "my_msgs/msg/Uses field 'thing' has type 'other_msgs/msg/Missing'" in str(excinfo.value)
+    assert "--msg-path" in str(excinfo.value)
+    with pytest.raises(RfcError, match="uses my_msgs/msg/Uses, which is unresolved"):
+        types.resolve("my_msgs/Wraps")
+
+
+def test_msg_path_order_does_not_matter(tmp_path):
+    (tmp_path / "a" / "top_msgs" / "msg").mkdir(parents=True)
+    (tmp_path / "b" / "base_msgs" / "msg").mkdir(parents=True)
+    (tmp_path / "a" / "top_msgs" / "msg" / "Top.msg").write_text("base_msgs/Base base\n")
+    (tmp_path / "b" / "base_msgs" / "msg" / "Base.msg").write_text("float32 value\n")
+    for order in ([tmp_path / "a", tmp_path / "b"], [tmp_path / "b", tmp_path / "a"]):
+        layout = flatten(MessageTypes(msg_paths=order), "top_msgs/Top")
+        assert [f.path for f in layout.fields] == ["base.value"]
+
+
+def test_idl_definitions_are_read(tmp_path):
+    (tmp_path / "idl_msgs" / "msg").mkdir(parents=True)
+    (tmp_path / "idl_msgs" / "msg" / "Reading.idl").write_text(
+        "module idl_msgs { module msg { struct Reading { double value; string label; }; }; };\n"
+    )
+    layout = flatten(MessageTypes(msg_paths=[tmp_path]), "idl_msgs/msg/Reading")
+    assert [(f.path, f.ros_type) for f in layout.fields] == [
+        ("value", "float64"),
+        ("label", "string"),
+    ]
+
+
+def test_a_bag_with_a_service_schema_keeps_its_messages(tmp_path):
+    bag, frame = bag_with_a_service_event(tmp_path)
+    types = MessageTypes(Middleware.ROS2, bags=[bag])
+    assert [(m.topic, m.data) for m in read_bag(bag, types)] == [("/p", frame)]
+    assert skipped_topics(bag) == (SERVICE_TOPIC,)
 
 
 def test_package_folder_without_msg_subfolder(tmp_path):

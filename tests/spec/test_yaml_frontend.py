@@ -189,16 +189,24 @@ def test_error_location_uses_the_name_given(tmp_path):
     assert "'blocks' of the spec must be a list, not a mapping" in caught.value.message
 
 
-def test_a_broken_user_definition_is_reported_at_msg_paths(tmp_path):
+def test_an_unresolved_user_definition_blocks_only_the_specs_that_use_it(tmp_path):
     (tmp_path / "msgs" / "my_msgs" / "msg").mkdir(parents=True)
     (tmp_path / "msgs" / "my_msgs" / "msg" / "Tick.msg").write_text("other_msgs/Thing thing\n")
     design = system(tmp_path, "  msg_paths: [./msgs]")
     from rfc.passes.pipeline import run_pipeline
 
+    run_pipeline(design)  # the quaternion system does not use my_msgs/Tick
+    (tmp_path / "uses").mkdir()
+    spec = write(
+        tmp_path / "uses",
+        QUATERNION_SYSTEM.format(project="  msg_paths: [../msgs]", publisher="").replace(
+            "geometry_msgs/Point", "my_msgs/Tick"
+        ),
+    )
     with pytest.raises(RfcError) as caught:
-        run_pipeline(design)
+        run_pipeline(load_spec(spec))
     assert "has type 'other_msgs/msg/Thing', which no definition provides" in caught.value.message
-    assert (caught.value.location.line, caught.value.location.column) == (3, 14)
+    assert "--msg-path" in str(caught.value)
 
 
 @pytest.mark.parametrize(

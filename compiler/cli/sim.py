@@ -92,10 +92,13 @@ def sim(
     """Replay a bag through the whole system and write each publisher's messages to OUT."""
     from rfc.driver import compile_spec
     from rfc.messages.rosbags_adapter import check_bag_path, message_types, write_bag
+    from rfc.passes.pipeline import PIPELINE
     from rfc.runtime.core import QueueConfig, Runtime
+    from rfc.runtime.hls_csim import HlsOnProcessor, attach_c_simulations
     from rfc.runtime.plan import RuntimePlan
 
-    design = compile_spec(str(spec))
+    # HLS accelerators run on the processor, C-simulated (rfc.runtime.hls_csim)
+    design = compile_spec(str(spec), pipeline=(HlsOnProcessor(), *PIPELINE))
     project = design.project
     check_bag_path(out, project.middleware)
     if out.resolve() == bag.resolve():
@@ -103,6 +106,7 @@ def sim(
     types = message_types(
         project.middleware, project.distro, tuple(str(p) for p in project.msg_paths), (str(bag),)
     )
+    design = attach_c_simulations(design)
     plan = RuntimePlan(design)
     topic_names = _match_topics(plan, bag, types)
     queues = QueueConfig(queue, depth)

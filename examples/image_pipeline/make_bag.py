@@ -20,7 +20,7 @@ IMAGE = "sensor_msgs/msg/Image"
 
 
 def random_images(count: int, seed: int) -> list[np.ndarray]:
-    """Random rgb8 images (height × width × 3 bytes), 1 to 24 pixels on each side."""
+    """Random rgb8 images (height by width by 3 bytes), 1 to 24 pixels on each side."""
     rng = np.random.default_rng(seed)
     sizes = rng.integers(1, 25, size=(count, 2))
     return [rng.integers(0, 256, size=(h, w, 3), dtype=np.uint8) for h, w in sizes]

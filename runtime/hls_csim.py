@@ -239,7 +239,7 @@ class CSimulation:
             if count != lengths[stream.path]:
                 raise RfcError(
                     f"HLS accelerator '{self.name}' wrote {count} elements on stream "
-                    f"{stream.argument} but set {port.port}{stream.length.access} to "
+                    f"{stream.argument} but set {port.port}->{stream.length.access[1:]} to "
                     f"{lengths[stream.path]}",
                     hint="set each stream's length field to the number of elements written",
                 )

@@ -11,7 +11,10 @@ import pytest
 
 from rfc.driver import compile_spec
 from rfc.errors import RfcError
+from rfc.messages.codec import default_values
+from rfc.messages.layout import flatten
 from rfc.messages.rosbags_adapter import message_types, read_bag, write_bag
+from rfc.messages.values import values_to_message
 from rfc.passes.pipeline import PIPELINE
 from rfc.runtime.hls_csim import HlsOnProcessor, attach_c_simulations
 from tests.support.cli import run_rfc
@@ -21,6 +24,8 @@ SYSTEM = Path(__file__).parent / "systems" / "hls"
 KINDS = "rfc_kinds/msg/Kinds"
 BAG_SUFFIX = {"ROS": ".bag", "ROS2": ".mcap"}
 MIDDLEWARE = {"ROS": "ros1", "ROS2": "ros2"}
+FRANKA = "franka_msgs/msg/FrankaState"
+FRANKA_ARRAYS = {"q": 7, "q_d": 7, "O_T_EE": 16, "O_T_EE_d": 16, "F_T_EE": 16}
 
 
 @pytest.fixture(autouse=True)
@@ -145,3 +150,41 @@ def test_a_function_that_breaks_its_streams_stops_the_replay_with_a_sentence(tmp
     assert result.returncode == 1
     assert said in result.stderr
     assert "Traceback" not in result.stderr
+
+
+def test_franka_state_is_taken_by_an_hls_function_with_one_struct(tmp_path):
+    spec = Path(shutil.copytree(SYSTEM.parent / "franka_hls", tmp_path / "franka")) / "sums.yaml"
+    spec.write_text(spec.read_text().replace("../../../../examples", str(ROOT / "examples")))
+    types = message_types("ros1", msg_paths=(str(ROOT / "examples" / "franka" / "msg"),))
+    layout = flatten(types, FRANKA)
+    rng = np.random.default_rng(11)
+    states, data = [], []
+    for index in range(3):
+        values = default_values(layout)
+        values.update({"header.seq": index, "header.stamp.sec": 7 + index})
+        values["header.frame_id"] = f"panda_link{index}"
+        state = {name: rng.normal(size=size) for name, size in FRANKA_ARRAYS.items()}
+        for name, array in state.items():
+            values.update({f"{name}[{i}]": float(v) for i, v in enumerate(array)})
+        states.append(state)
+        data.append(types.serialize(values_to_message(values, layout, types), FRANKA))
+    bag = tmp_path / "franka.bag"
+    write_bag(
+        bag,
+        types,
+        {"/franka_state": FRANKA},
+        [("/franka_state", i + 1, d) for i, d in enumerate(data)],
+    )
+    out = tmp_path / "sums.bag"
+    result = sim(spec, bag, out)
+    assert result.returncode == 0, result.stderr
+    sums = [types.deserialize(m.data, m.type_name) for m in read_bag(out, types)]
+    assert len(sums) == len(states)
+    for index, (state, message) in enumerate(zip(states, sums, strict=True)):
+        transforms = 0.0
+        for i in range(16):  # the function's order of operations, in float64
+            transforms += state["O_T_EE"][i] - state["O_T_EE_d"][i] + state["F_T_EE"][i]
+        point = message.point
+        assert (point.x, point.y, point.z) == (sum(state["q"]), sum(state["q_d"]), transforms)
+        assert message.header.frame_id == f"panda_link{index}"
+        assert (message.header.seq, message.header.stamp.sec) == (index, 7 + index)

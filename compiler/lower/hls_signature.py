@@ -120,10 +120,12 @@ def _arguments(path: Path, text: str, start: int, params: str):
             bits = int(ap.group(1))
         if bits is None or not re.fullmatch(r"[A-Za-z_]\w*", name):
             raise RfcError(
-                f"HLS argument '{declaration}' is not a scalar rfc can connect to a field",
+                f"HLS argument '{declaration}' is neither a scalar, a message struct nor an "
+                "hls::stream",
                 location=location,
-                hint="use double, float, (u)intN_t, bool or ap_(u)int<N>; exclude fields "
-                "such as strings and sequences from HLS accelerators",
+                hint="use double, float, (u)intN_t, bool or ap_(u)int<N> per field, or the "
+                "message structs and hls::stream<T> of <accelerator>_messages.h "
+                "(docs/accelerators.md)",
             )
         yield HlsArgument(name, ctype, bits, output, location)
 

@@ -26,11 +26,11 @@ from typing import IO, Any, ClassVar
 import numpy as np
 
 from rfc.errors import RfcError, SourceLocation
-from rfc.ir.model import AcceleratorKind, AcceleratorType, BlockKind, Design
+from rfc.ir.model import AcceleratorKind, AcceleratorType, Design
 from rfc.lower.hls_harness import hls_harness
+from rfc.lower.hls_headers import first_block, port_signatures
 from rfc.lower.hls_signature import ArgumentKind, HlsArgument, read_top_function
 from rfc.lower.hls_types import CStream, MessageStruct, hls_header, message_structs
-from rfc.lower.system.interfaces import accelerator_pins
 from rfc.messages.codec import default_values
 from rfc.messages.layout import Layout
 from rfc.messages.rosbags_adapter import MessageTypes
@@ -39,8 +39,6 @@ from rfc.passes.base import types_of
 
 #: How g++ compiles a C simulation.
 CXXFLAGS = ("-std=c++14", "-O2")
-#: Bus width the signatures are read at (C simulation has no bus; any width gives one struct).
-_WIDTH = 64
 #: `struct` formats of the C types on the pipe.
 _FORMATS = {
     "bool": "?",
@@ -95,18 +93,9 @@ def attach_c_simulations(design: Design, cache: Path | None = None) -> Design:
     types = types_of(design.project)
     accelerators = []
     for accelerator in design.accelerators:
-        if isinstance(accelerator.reference_function, _Pending):
-            block = next(
-                b
-                for b in design.blocks_of(BlockKind.ACCELERATOR)
-                if b.accelerator == accelerator.name
-            )
-            maxima = design.project.maxima
-            signatures = {
-                p.name: tuple(pin.signal for pin in accelerator_pins(p, _WIDTH, maxima))
-                for p in block.ports
-            }
-            directions = {p.name: p.direction for p in block.ports}
+        block = first_block(design, accelerator)
+        if isinstance(accelerator.reference_function, _Pending) and block is not None:
+            signatures, directions = port_signatures(design, block)
             layouts = {p.name: p.layout for p in block.ports if p.layout is not None}
             top = accelerator.top or accelerator.name
             structs = message_structs(signatures, directions)

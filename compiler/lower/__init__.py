@@ -12,12 +12,13 @@ from __future__ import annotations
 from rfc.ir.model import Design
 from rfc.lower.artifacts import Artifact, BuildOptions, Lowering, ReportSection
 from rfc.lower.hardware import hardware
+from rfc.lower.hls_headers import hls_headers
 from rfc.lower.model import holistic_model
 from rfc.lower.report import build_report
 from rfc.lower.ros2_node import ros2_node
 
 #: Every lowering, in the order their artifacts are listed in the report.
-LOWERINGS: tuple[Lowering, ...] = (holistic_model, hardware, ros2_node)
+LOWERINGS: tuple[Lowering, ...] = (holistic_model, hardware, hls_headers, ros2_node)
 
 
 def lower(design: Design, options: BuildOptions, spec_text: str) -> tuple[Artifact, ...]:

@@ -17,6 +17,7 @@ from rfc.messages.layout import flatten
 from rfc.messages.limits import Limits
 from rfc.messages.rosbags_adapter import message_types
 from rfc.messages.selection import select
+from tests.support.cli import run_rfc
 
 ROOT = Path(__file__).resolve().parents[2]
 FRANKA_MSGS = str(ROOT / "examples" / "franka" / "msg")
@@ -112,3 +113,20 @@ def test_a_field_named_like_a_cpp_keyword_is_refused(tmp_path):
     with pytest.raises(RfcError) as error:
         message_struct("k", ports, output=False)
     assert "is named 'new', a C++ keyword" in str(error.value)
+
+
+def test_rfc_build_writes_the_header_the_example_sources_compile_against(tmp_path):
+    spec = ROOT / "examples" / "image_pipeline" / "ImagePipeline.yaml"
+    result = run_rfc("build", spec, "-o", tmp_path / "build", "--no-hardware", cwd=ROOT)
+    assert result.returncode == 0, result.stderr
+    for name, source in [
+        ("RgbToGray", "rgb_to_gray.cpp"),
+        ("Downscale", "downscale.cpp"),
+        ("IntegralImage", "integral_image.cpp"),
+    ]:
+        header = tmp_path / "build" / "hls" / f"{name}_messages.h"
+        assert header.exists()
+        flags = ["-std=c++14", "-fsyntax-only", "-Wall", "-Werror", "-Wno-unknown-pragmas"]
+        command = ["g++", *flags, f"-I{header.parent}", f"-I{INCLUDE}", str(spec.parent / source)]
+        compiled = subprocess.run(command, capture_output=True, text=True, check=False)
+        assert compiled.returncode == 0, compiled.stderr

@@ -160,10 +160,11 @@ class CSimulation:
         """
         top = accelerator.top or accelerator.name
         sources = [p for p in accelerator.sources if p.suffix in _SOURCES]
-        scalar = _check_arguments(accelerator, top, read_top_function(sources, top), structs)
+        arguments = read_top_function(sources, top)
+        scalars = arguments if _check_arguments(accelerator, top, arguments, structs) else ()
         files = {
             f"{accelerator.name}_messages.h": header,
-            f"{accelerator.name}_harness.cpp": hls_harness(accelerator.name, top, structs, scalar),
+            f"{accelerator.name}_harness.cpp": hls_harness(accelerator.name, top, structs, scalars),
         }
         program = _compile(accelerator, files, sources, cache)
         return cls(accelerator.name, program, structs, layouts, types)

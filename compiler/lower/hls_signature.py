@@ -69,6 +69,7 @@ class HlsArgument:
         output: Passed by pointer or reference: an output (streams: always).
         location: Where it is declared.
         kind: A scalar, a message struct or a stream.
+        reference: Passed by reference (``&``) rather than by pointer or value.
     """
 
     name: str
@@ -77,6 +78,7 @@ class HlsArgument:
     output: bool
     location: SourceLocation
     kind: ArgumentKind = ArgumentKind.SCALAR
+    reference: bool = False
 
 
 def read_top_function(sources: list[Path], top: str) -> tuple[HlsArgument, ...]:
@@ -127,7 +129,7 @@ def _arguments(path: Path, text: str, start: int, params: str):
                 "message structs and hls::stream<T> of <accelerator>_messages.h "
                 "(docs/accelerators.md)",
             )
-        yield HlsArgument(name, ctype, bits, output, location)
+        yield HlsArgument(name, ctype, bits, output, location, reference="&" in tokens)
 
 
 def _location(path: Path, text: str, offset: int) -> SourceLocation:

@@ -10,7 +10,8 @@ other end), all little-endian in each value's C type (a bool is one byte):
 
 It calls the top function with the structs and streams (or, for a top function with scalar
 arguments, with the fields one by one, declared as its source declares them) and checks that
-every input stream was read to its end. Anything the function prints goes to standard error: the answers have their own descriptor.
+every input stream was read to its end. Anything the function prints goes to standard error:
+the answers have their own descriptor.
 """
 
 from __future__ import annotations

@@ -45,8 +45,8 @@ _FORMATS = {
     "char": "B",
     "float": "f",
     "double": "d",
-    **{f"{s}int{b}_t": f for b, f in ((8, "b"), (16, "h"), (32, "i"), (64, "q")) for s in ("",)},
-    **{f"uint{b}_t": f for b, f in ((8, "B"), (16, "H"), (32, "I"), (64, "Q"))},
+    **{f"int{b}_t": f for b, f in ((8, "b"), (16, "h"), (32, "i"), (64, "q"))},
+    **{f"uint{b}_t": f.upper() for b, f in ((8, "b"), (16, "h"), (32, "i"), (64, "q"))},
 }
 _GXX_ERROR = re.compile(r"^(?P<file>[^:\n]+):(?P<line>\d+):(?P<column>\d+): error: (?P<what>.+)$")
 
@@ -259,27 +259,25 @@ def _check_arguments(
         RfcError: They are not, naming the first argument at fault.
     """
     scalar = all(a.kind is ArgumentKind.SCALAR for a in arguments)
-    if scalar:
+    expected = []
+    if scalar and not any(s.streams for s in structs):  # scalars cannot carry streams
         expected = [
-            (ArgumentKind.SCALAR, f.ctype, s.output, f"{s.port}{f.access}")
+            (ArgumentKind.SCALAR, f.ctype, s.output, f"{s.port}{f.access}".replace(".", "_"))
             for s in structs
             for f in s.fields
         ]
-        if any(s.streams for s in structs):
-            expected = []  # scalars cannot carry streams: ask for the struct form
-    if not scalar or not expected:
-        expected = []
+    if not expected:
         for s in structs:
             expected.append((ArgumentKind.STRUCT, s.type_name, s.output, s.port))
             expected += [
                 (ArgumentKind.STREAM, f"hls::stream<{t.element}>", True, t.argument)
                 for t in s.streams
             ]
-    wanted = ", ".join(f"{ctype} {name}" for _, ctype, _, name in expected)
-    hint = (
-        f"declare it as in {accelerator.name}_messages.h: void {top}({wanted}) "
-        f"(`rfc stub SPEC {accelerator.name} --lang hls`)"
+    wanted = ", ".join(
+        f"{ctype} {'&' if kind is ArgumentKind.STREAM else '*' if output else ''}{name}"
+        for kind, ctype, output, name in expected
     )
+    hint = f"declare it as void {top}({wanted}) (docs/accelerators.md, HLS accelerators)"
     if len(arguments) != len(expected):
         raise RfcError(
             f"HLS top function {top} of accelerator '{accelerator.name}' has "
@@ -289,20 +287,23 @@ def _check_arguments(
         )
     for argument, (kind, ctype, output, name) in zip(arguments, expected, strict=True):
         same = argument.kind is kind and argument.output == output
-        if kind is not ArgumentKind.SCALAR:
-            same = same and argument.ctype == ctype
+        if kind is ArgumentKind.SCALAR:
+            same = same and argument.bits == _SCALAR_BITS[ctype]
         else:
-            same = same and _SCALAR_BITS.get(argument.ctype) == _SCALAR_BITS.get(ctype)
+            same = same and argument.ctype == ctype
         if not same:
-            mode = "output" if argument.output else "input"
             raise RfcError(
-                f"argument '{argument.name}' of HLS top function {top} is a {mode} "
-                f"{argument.ctype}; expected {'an output' if output else 'an input'} "
-                f"{ctype} for {name}",
+                f"argument '{argument.name}' of HLS top function {top} is "
+                f"{_mode(argument.output)} {argument.ctype}; expected {_mode(output)} {ctype} "
+                f"for {name}",
                 location=argument.location,
                 hint=hint,
             )
-    return scalar and bool(arguments)
+    return bool(expected) and expected[0][0] is ArgumentKind.SCALAR
+
+
+def _mode(output: bool) -> str:
+    return "an output" if output else "an input"
 
 
 _SCALAR_BITS = {"bool": 1, "char": 8, "float": 32, "double": 64} | {

@@ -127,7 +127,7 @@ def test_a_top_function_without_the_structs_is_refused_at_its_argument(tmp_path)
     assert "has 2 arguments; its messages give 8" in str(error.value)
     assert error.value.location is not None
     assert error.value.location.line == 2
-    assert "kin_t kin, hls::stream<char> kin_name" in str(error.value)
+    assert "void Copy(kin_t kin, hls::stream<char> &kin_name," in str(error.value)
 
 
 @pytest.mark.parametrize(

@@ -22,6 +22,7 @@ from rfc.lower.hls_types import CStream, MessageStruct
 _PRELUDE = """\
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <unistd.h>
 
 namespace {
@@ -39,6 +40,26 @@ void get(T &value) {
 template <typename T>
 void put(const T &value) {
     std::fwrite(&value, sizeof value, 1, answers);
+}
+
+// Primitive elements move in one block each way (the stream still sees them one by one).
+template <typename T>
+void get_elements(hls::stream<T> &stream, uint32_t count) {
+    std::unique_ptr<T[]> elements(new T[count]);
+    if (std::fread(elements.get(), sizeof(T), count, stdin) != count) {
+        std::fputs("rfc C simulation: a call ended early\\n", stderr);
+        std::exit(2);
+    }
+    for (uint32_t i = 0; i < count; ++i) stream.write(elements[i]);
+}
+
+template <typename T>
+void put_elements(hls::stream<T> &stream) {
+    const uint32_t count = static_cast<uint32_t>(stream.size());
+    std::unique_ptr<T[]> elements(new T[count]);
+    for (uint32_t i = 0; i < count; ++i) elements[i] = stream.read();
+    put(count);
+    std::fwrite(elements.get(), sizeof(T), count, answers);
 }
 
 template <typename T>
@@ -145,8 +166,12 @@ def _element_io(stream: CStream) -> list[str]:
 def _read_port(struct: MessageStruct) -> list[str]:
     lines = [f"        get({struct.port}{f.access});" for f in struct.fields]
     for stream in struct.streams:
+        count = f"{struct.port}{stream.length.access}"
+        if not stream.fields:
+            lines.append(f"        get_elements({stream.argument}, {count});")
+            continue
         lines += [
-            f"        for (uint32_t i = 0; i < {struct.port}{stream.length.access}; ++i) {{",
+            f"        for (uint32_t i = 0; i < {count}; ++i) {{",
             f"            {stream.element} element;",
             "            get(element);",
             f"            {stream.argument}.write(element);",
@@ -158,6 +183,9 @@ def _read_port(struct: MessageStruct) -> list[str]:
 def _write_port(struct: MessageStruct) -> list[str]:
     lines = [f"        put({struct.port}{f.access});" for f in struct.fields]
     for stream in struct.streams:
+        if not stream.fields:
+            lines.append(f"        put_elements({stream.argument});")
+            continue
         lines += [
             f"        put(static_cast<uint32_t>({stream.argument}.size()));",
             f"        while (!{stream.argument}.empty()) put({stream.argument}.read());",

@@ -80,7 +80,7 @@ class SoftwareAccelerator:
         try:
             with running_user_code(what):
                 result = self.function(*arguments)
-        except RfcError:
+        except RfcError:  # a time limit, or a C-simulated HLS accelerator's own sentence
             raise
         except Exception as exc:  # the user's function failed: stop with its words
             raise RfcError(

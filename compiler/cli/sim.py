@@ -111,9 +111,12 @@ def sim(
     from rfc.lower.runtime_plan import DesignPlan
     from rfc.messages.bag_files import check_input_bag, refuse_to_replace_a_non_bag
     from rfc.messages.rosbags_adapter import check_bag_path, message_types, write_bag
+    from rfc.passes.pipeline import PIPELINE
     from rfc.runtime.core import QueueConfig, Runtime
+    from rfc.runtime.hls_csim import HlsOnProcessor, attach_c_simulations
 
-    design = compile_spec(str(spec))
+    # HLS accelerators run on the processor, C-simulated (rfc.runtime.hls_csim)
+    design = compile_spec(str(spec), pipeline=(HlsOnProcessor(), *PIPELINE))
     project = design.project
     check_bag_path(out, project.middleware)
     refuse_to_replace_a_non_bag(out, force)
@@ -123,6 +126,7 @@ def sim(
     types = message_types(
         project.middleware, project.distro, tuple(str(p) for p in project.msg_paths), (str(bag),)
     )
+    design = attach_c_simulations(design)
     plan = DesignPlan(design)
     note_skipped_topics(bag)
     topic_names = _chosen_topics(_match_topics(plan, bag, types), topics)

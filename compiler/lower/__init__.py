@@ -12,12 +12,13 @@ from __future__ import annotations
 from rfc.ir.model import Design
 from rfc.lower.artifacts import Artifact, BuildOptions, Lowering, ReportSection
 from rfc.lower.hardware import hardware
+from rfc.lower.hls_headers import hls_headers
 from rfc.lower.model import holistic_model
 from rfc.lower.node import processor_node
 from rfc.lower.report import build_report
 
 #: Every lowering, in the order their artifacts are listed in the report.
-LOWERINGS: tuple[Lowering, ...] = (holistic_model, hardware, processor_node)
+LOWERINGS: tuple[Lowering, ...] = (holistic_model, hardware, hls_headers, processor_node)
 
 
 def lower(design: Design, options: BuildOptions, spec_text: str) -> tuple[Artifact, ...]:

@@ -8,6 +8,10 @@ so ``QuaternionToEuler(double x, ..., double *roll, ...)`` serves Quaternion →
 the core the ports ``ap_clk ap_rst ap_start ap_done ap_idle ap_ready``, one port per input
 named like the argument, and ``<name>``/``<name>_ap_vld`` per output; rfc's wrapper drives them.
 
+Or, with rfc's generated header (`rfc.lower.hls_types`), one struct per port (inputs by value,
+outputs by pointer) followed by the port's ``hls::stream<T>`` references: such arguments are read
+as `ArgumentKind.STRUCT` and `ArgumentKind.STREAM`.
+
 Only the declaration of the top function is read, with a tokenizer for C declarators — not a C++
 parser; anything it does not understand is an error that names the line.
 """
@@ -16,6 +20,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
+from enum import StrEnum
 from pathlib import Path
 
 from rfc.errors import RfcError, SourceLocation, did_you_mean
@@ -41,6 +46,18 @@ _AP_INT = re.compile(r"^ap_u?int<\s*(\d+)\s*>$")
 _COMMENTS = re.compile(r"//[^\n]*|/\*.*?\*/", re.S)
 
 
+class ArgumentKind(StrEnum):
+    """What an argument of the top function is."""
+
+    SCALAR = "scalar"
+    STRUCT = "struct"
+    STREAM = "stream"
+
+
+_STREAM = re.compile(r"^hls::stream<(.+)>$")
+_STRUCT = re.compile(r"^[A-Za-z_]\w*_t$")
+
+
 @dataclass(frozen=True)
 class HlsArgument:
     """One argument of the top function.
@@ -48,9 +65,11 @@ class HlsArgument:
     Attributes:
         name: The argument's name (the core's port name).
         ctype: Its type without qualifiers, pointer or reference.
-        bits: Width in bits.
-        output: Passed by pointer or reference: an output.
+        bits: Width in bits (0 for structs and streams).
+        output: Passed by pointer or reference: an output (streams: always).
         location: Where it is declared.
+        kind: A scalar, a message struct or a stream.
+        reference: Passed by reference (``&``) rather than by pointer or value.
     """
 
     name: str
@@ -58,6 +77,8 @@ class HlsArgument:
     bits: int
     output: bool
     location: SourceLocation
+    kind: ArgumentKind = ArgumentKind.SCALAR
+    reference: bool = False
 
 
 def read_top_function(sources: list[Path], top: str) -> tuple[HlsArgument, ...]:
@@ -91,17 +112,24 @@ def _arguments(path: Path, text: str, start: int, params: str):
         name = tokens[-1]
         output = "*" in tokens or "&" in tokens
         ctype = " ".join(t for t in tokens[:-1] if t not in ("*", "&", "const", "volatile"))
+        compact = ctype.replace(" ", "")
+        if _STREAM.match(compact) or (_STRUCT.match(compact) and compact not in _SCALARS):
+            kind = ArgumentKind.STREAM if _STREAM.match(compact) else ArgumentKind.STRUCT
+            yield HlsArgument(name, compact, 0, output, location, kind)
+            continue
         bits = _SCALARS.get(ctype)
         if bits is None and (ap := _AP_INT.match(ctype.replace(" ", ""))):
             bits = int(ap.group(1))
         if bits is None or not re.fullmatch(r"[A-Za-z_]\w*", name):
             raise RfcError(
-                f"HLS argument '{declaration}' is not a scalar rfc can connect to a field",
+                f"HLS argument '{declaration}' is neither a scalar, a message struct nor an "
+                "hls::stream",
                 location=location,
-                hint="use double, float, (u)intN_t, bool or ap_(u)int<N>; exclude fields "
-                "such as strings and sequences from HLS accelerators",
+                hint="use double, float, (u)intN_t, bool or ap_(u)int<N> per field, or the "
+                "message structs and hls::stream<T> of <accelerator>_messages.h "
+                "(docs/accelerators.md)",
             )
-        yield HlsArgument(name, ctype, bits, output, location)
+        yield HlsArgument(name, ctype, bits, output, location, reference="&" in tokens)
 
 
 def _location(path: Path, text: str, offset: int) -> SourceLocation:

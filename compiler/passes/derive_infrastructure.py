@@ -58,7 +58,7 @@ class DeriveInfrastructure:
                 (placement.publishers, placement.crossing_publishers),
             )
         )
-        check_maxima(design, (*subscribers, *publishers), placement.software)
+        check_maxima(design, (*subscribers, *publishers))
         buffers = tuple(
             Buffer(converter.block, field.path, converter.max_frame_bytes)
             for converter in publishers

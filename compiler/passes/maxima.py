@@ -14,18 +14,16 @@ from rfc.ir.model import BlockKind, Design
 from rfc.messages.layout import FieldKind, Layout
 
 
-def check_maxima(design: Design, converters: Iterable[Converter], software: Iterable[str]) -> None:
-    """Raise unless every per-field maximum names an unbounded string or sequence of the logic.
+def check_maxima(design: Design, converters: Iterable[Converter]) -> None:
+    """Raise unless every per-field maximum names an unbounded string or sequence of the system.
 
-    The logic's messages are its converters' and its hardware accelerators' ports (a message
-    may travel between two accelerators only). A field bounded in its .msg keeps its bound, so
-    a maximum for it would do nothing: it is not offered either.
+    The system's messages are its converters' and its accelerators' ports (a message may travel
+    between two accelerators only; those on the processor count too, as `rfc sim` holds their
+    inputs to the maxima and C-simulated HLS accelerators are on the processor). A field bounded
+    in its .msg keeps its bound, so a maximum for it would do nothing: it is not offered either.
     """
     layouts = [converter.layout for converter in converters]
-    in_software = set(software)
     for block in design.blocks_of(BlockKind.ACCELERATOR):
-        if block.name in in_software:
-            continue
         layouts += [port.layout for port in block.ports if port.layout is not None]
     paths = {path for layout in layouts for path in variable_paths(layout)}
     for path in design.project.maxima.fields:

@@ -6,12 +6,12 @@ IMAGE = "sensor_msgs/Image"
 
 
 def image_stage(name: str, source: str, port_in: str, port_out: str):
-    """An HLS stage taking an image (of which it reads the size and pixels) and giving one."""
+    """An HLS stage taking an image (its header, size and pixels) and giving one."""
     return rfc.external_accelerator(
         name,
         kind="HLS",
         sources=source,
-        inputs={port_in: rfc.port(IMAGE, include=["height", "width", "data"])},
+        inputs={port_in: rfc.port(IMAGE, include=["header", "height", "width", "data"])},
         outputs={port_out: IMAGE},
     )
 

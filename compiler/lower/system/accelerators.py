@@ -22,7 +22,7 @@ from rfc.ir.model import Port as ModelPort
 from rfc.lib.converters.ports import Direction, Port, PortRole
 from rfc.lib.hls.adapter import AdapterShape
 from rfc.lib.interface import typed_block
-from rfc.lower.hls_signature import HlsArgument, read_top_function
+from rfc.lower.hls_signature import ArgumentKind, HlsArgument, read_top_function
 from rfc.lower.netlist import EntityDecl, Mode, PortDecl
 from rfc.lower.system.components import Component, adapter_component, convert
 from rfc.lower.system.interfaces import MESSAGE, Pin, accelerator_pins
@@ -224,6 +224,16 @@ def _hls(
 ) -> AcceleratorHardware:
     top = accelerator.top or accelerator.name
     arguments = read_top_function(list(accelerator.sources), top)
+    aggregate = next((a for a in arguments if a.kind is not ArgumentKind.SCALAR), None)
+    if aggregate is not None:
+        raise RfcError(
+            f"HLS top function {top} of accelerator '{accelerator.name}' takes message structs "
+            f"and streams ('{aggregate.ctype} {aggregate.name}'): `rfc sim` C-simulates it, but "
+            "rfc does not wire such cores into the logic yet",
+            location=aggregate.location,
+            hint="simulate the system with `rfc sim`; to build the logic, give the top function "
+            "scalar arguments, or write the accelerator in MyHDL or VHDL",
+        )
     fields: list[tuple[ModelPort, Pin]] = []
     for port in block.ports:
         for pin in ports[port.name]:

@@ -137,10 +137,10 @@ def test_an_hls_function_with_the_wrong_arguments_is_refused_at_its_line(tmp_pat
     assert "pass.cpp:1" in message
 
 
-def test_hls_streams_are_refused_naming_the_argument(tmp_path):
+def test_hls_structs_and_streams_are_refused_in_the_logic_naming_the_argument(tmp_path):
     message = refused(ROOT / "examples/image_pipeline/ImagePipeline.yaml", tmp_path / "b")
-    assert "hls::stream<ap_uint<8>> & data" in message
-    assert "is not a scalar" in message
+    assert "takes message structs and streams ('rgb_t rgb')" in message
+    assert "rgb_to_gray.cpp:7:" in message
 
 
 def test_the_report_gives_latencies_against_targets_and_estimated_resources(tmp_path):

@@ -71,6 +71,8 @@ def engine(clk, rst, in_valid, in_ready, inputs, out_valid, out_ready, outputs, 
     memory = [fmt.signal() for _ in range(max(program.size, 2))]
     read_a, read_b = fmt.signal(), fmt.signal()
     put, put_value = Signal(bool(0)), fmt.signal()
+    write_enable, write_address = Signal(bool(0)), _unsigned(program.size)
+    write_data = fmt.signal()
 
     # Input and output chains: element 0 is the next input to load / the first output.
     chain_in = [io_signal() for _ in range(program.inputs + 1)]
@@ -182,12 +184,21 @@ def engine(clk, rst, in_valid, in_ready, inputs, out_valid, out_ready, outputs, 
         else:
             put_value.next = sin_word
 
+    @always_comb
+    def select_write():
+        write_enable.next = w4 or put
+        if w4:
+            write_address.next = d4
+            write_data.next = mac_result
+        else:
+            write_address.next = dst
+            write_data.next = put_value
+
+    # One write statement, so that synthesis infers a memory (distributed RAM).
     @always(clk.posedge)
     def write():
-        if w4:
-            memory[d4].next = mac_result
-        elif put:
-            memory[dst].next = put_value
+        if write_enable:
+            memory[write_address].next = write_data
 
     @always_seq(clk.posedge, reset=rst)
     def sequence():
@@ -224,7 +235,7 @@ def engine(clk, rst, in_valid, in_ready, inputs, out_valid, out_ready, outputs, 
         tail_out.next = stored
 
     return (loading, storing, to_fixed, to_float, mac, units, decode, lookup, read, control,
-            write, sequence, chain_tail)  # fmt: skip
+            select_write, write, sequence, chain_tail)  # fmt: skip
 
 
 @block

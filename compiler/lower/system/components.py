@@ -2,7 +2,8 @@
 
 Each is a `Component`: its interface as the netlist sees it and its VHDL files. The converters
 come from `rfc.lib.converters`, the manager from `rfc.lib.manager`, the ap_ctrl wrapper of HLS
-cores from `rfc.lib.hls`, the handshake fork of fan-out from `rfc.lib.fork`.
+cores from `rfc.lib.hls`, the handshake fork of fan-out from `rfc.lib.fork`, the gate that drops
+malformed frames from `rfc.lib.converters.malformed`.
 """
 
 from __future__ import annotations
@@ -18,6 +19,7 @@ from myhdl import ToVHDLWarning
 from rfc.ir.infrastructure import Converter
 from rfc.lib.converters.buffers import Buffer, buffered_ports, buffered_publisher, buffers_of
 from rfc.lib.converters.build import generate
+from rfc.lib.converters.malformed import drop_gate, gate_ports
 from rfc.lib.converters.plan import plan
 from rfc.lib.converters.ports import Direction, Port, PortRole, Side
 from rfc.lib.converters.toplevel import elaboration, port_signals, top_block
@@ -122,6 +124,12 @@ def fork_component(consumers: int, directory: Path, name: str) -> Component:
         ]
     what = f"handshake fork to {consumers} (rfc)"
     return convert(name, ports, fork_body, directory, what, consumers=consumers)
+
+
+def gate_component(directory: Path, name: str) -> Component:
+    """The gate that takes a subscriber's malformed frames and counts them by reason."""
+    what = "drops and counts malformed frames (rfc)"
+    return convert(name, gate_ports(), drop_gate, directory, what)
 
 
 def adapter_component(shape: AdapterShape, directory: Path, name: str) -> Component:

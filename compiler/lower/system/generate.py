@@ -18,8 +18,9 @@ from rfc.errors import RfcError
 from rfc.ir.infrastructure import Converter, Scheduler
 from rfc.ir.model import BlockKind, Connection, Design
 from rfc.lib.converters.buffers import Buffer
+from rfc.lib.converters.malformed import DROP_REASONS, counter_name, status_port
 from rfc.lib.converters.plan import accelerator_ports
-from rfc.lib.converters.ports import Side
+from rfc.lib.converters.ports import COUNTER_BITS, Side
 from rfc.lib.manager.entity import ManagerShape
 from rfc.lib.schedulers.spec import DEFAULT_IDLE, AnySchedulerSpec, SchedulerSpec
 from rfc.lower.netlist import EntityDecl, Mode, Netlist, PortDecl, constant
@@ -28,6 +29,7 @@ from rfc.lower.system.components import (
     Component,
     converter_component,
     fork_component,
+    gate_component,
     manager_component,
 )
 from rfc.lower.system.devices import block_rams, bram36
@@ -138,6 +140,7 @@ def generate_system(
                 Terminal(MANAGER, f"{group}_{signal}"), builder.netlist.port(f"{group}_{signal}")
             )
 
+    gate: Component | None = None
     for side, converters in (
         (Side.SUBSCRIBER, infrastructure.subscribers),
         (Side.PUBLISHER, infrastructure.publishers),
@@ -154,8 +157,16 @@ def generate_system(
             _wire_dma(builder, label, converter, side)
             pins = accelerator_ports(converter.layout, width, side, limits)
             names = [p.name for p in pins]
-            port = "out0" if side is Side.SUBSCRIBER else "in0"
-            interfaces[(converter.block, port)] = {n: Terminal(label, n) for n in names}
+            interface = {n: Terminal(label, n) for n in names}
+            if side is Side.PUBLISHER:
+                interfaces[(converter.block, "in0")] = interface
+                continue
+            if gate is None:
+                gate = gate_component(directory, f"{identifier(design.project.name)}_drop_gate")
+                components.append(gate)
+            interfaces[(converter.block, "out0")] = _gate(
+                builder, label, interface, gate.entity, converter.id
+            )
 
     hardware_types: dict[str, AcceleratorHardware] = {}
     for block in design.blocks_of(BlockKind.ACCELERATOR):
@@ -211,6 +222,23 @@ def generate_system(
     )
 
 
+def _gate(
+    builder: TopBuilder, label: str, interface: Interface, gate: EntityDecl, subscriber: int
+) -> Interface:
+    """Put a drop gate behind a subscriber; return the interface its consumers see."""
+    cell = f"{label}_drop_gate"
+    builder.cell(cell, gate)
+    builder.wire(interface[f"{MESSAGE}_valid"], Terminal(cell, "s_valid"))
+    builder.wire(interface[f"{MESSAGE}_error"], Terminal(cell, "s_error"))
+    builder.wire(Terminal(label, "error_reason"), Terminal(cell, "s_reason"))
+    builder.wire(Terminal(cell, "s_ready"), interface[f"{MESSAGE}_ready"])
+    for reason in DROP_REASONS:
+        status = builder.netlist.port(status_port(subscriber, reason))
+        builder.connect(Terminal(cell, counter_name(reason)), status)
+    valid, ready = Terminal(cell, "m_valid"), Terminal(cell, "m_ready")
+    return {**interface, f"{MESSAGE}_valid": valid, f"{MESSAGE}_ready": ready}
+
+
 def _top_entity(design: Design) -> EntityDecl:
     width = design.project.bus_width
     ports = [PortDecl(CLOCK, Mode.IN, 1, True), PortDecl(RESET_N, Mode.IN, 1, True)]
@@ -222,6 +250,12 @@ def _top_entity(design: Design) -> EntityDecl:
             PortDecl(f"{group}_tvalid", data, 1, True),
             PortDecl(f"{group}_tready", back, 1, True),
             PortDecl(f"{group}_tlast", data, 1, True),
+        ]
+    assert design.infrastructure is not None
+    for converter in design.infrastructure.subscribers:
+        ports += [
+            PortDecl(status_port(converter.id, reason), Mode.OUT, COUNTER_BITS)
+            for reason in DROP_REASONS
         ]
     return EntityDecl(top_name(design), tuple(ports))
 

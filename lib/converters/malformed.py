@@ -1,10 +1,11 @@
 """Why a subscriber rejected a frame, and the gate that keeps rejected frames from the logic.
 
 The subscriber presents every frame's record, a malformed one with ``msg_error`` set and its
-reason on ``error_reason`` (`Reason`). Between the subscriber and what consumes its messages the
-top level puts a `drop_gate`: a rejected record is taken by the gate itself — its consumer never
-sees ``valid`` for it — and counted per reason, so the processor can read how many frames each
-subscriber dropped and why (docs/protocol.md, status registers).
+reason on ``error_reason`` (`Reason`). Behind a subscriber of fixed-size fields the top level
+puts a `drop_gate`: a rejected record is taken by the gate itself — its consumer never sees
+``valid`` for it — and counted per reason, so the processor can read how many frames each
+subscriber dropped and why (docs/protocol.md, status registers). A subscriber that streams
+strings or sequences gets a frame guard in front instead (`rfc.lib.converters.guard`).
 """
 
 from __future__ import annotations

@@ -18,7 +18,7 @@ from rfc.errors import RfcError
 from rfc.ir.infrastructure import Converter, Scheduler
 from rfc.ir.model import BlockKind, Connection, Design
 from rfc.lib.converters.buffers import Buffer
-from rfc.lib.converters.malformed import DROP_REASONS, counter_name, status_port
+from rfc.lib.converters.malformed import DROP_REASONS, status_port
 from rfc.lib.converters.plan import accelerator_ports
 from rfc.lib.converters.ports import COUNTER_BITS, Side
 from rfc.lib.manager.entity import ManagerShape
@@ -29,10 +29,10 @@ from rfc.lower.system.components import (
     Component,
     converter_component,
     fork_component,
-    gate_component,
     manager_component,
 )
 from rfc.lower.system.devices import block_rams, bram36
+from rfc.lower.system.guards import WHOLE_FRAME, SubscriberGuards
 from rfc.lower.system.interfaces import MESSAGE
 from rfc.lower.system.top import CLOCK, RESET_N, Interface, Terminal, TopBuilder, wire_connection
 from rfc.messages.limits import Limits
@@ -140,7 +140,7 @@ def generate_system(
                 Terminal(MANAGER, f"{group}_{signal}"), builder.netlist.port(f"{group}_{signal}")
             )
 
-    gate: Component | None = None
+    guards = SubscriberGuards(identifier(design.project.name), width, directory, limits)
     for side, converters in (
         (Side.SUBSCRIBER, infrastructure.subscribers),
         (Side.PUBLISHER, infrastructure.publishers),
@@ -154,19 +154,17 @@ def generate_system(
             if component.buffers:
                 buffers[converter.block] = component.buffers
             builder.cell(label, component.entity)
-            _wire_dma(builder, label, converter, side)
             pins = accelerator_ports(converter.layout, width, side, limits)
-            names = [p.name for p in pins]
-            interface = {n: Terminal(label, n) for n in names}
+            interface = {p.name: Terminal(label, p.name) for p in pins}
             if side is Side.PUBLISHER:
+                _wire_dma(builder, label, converter, side)
                 interfaces[(converter.block, "in0")] = interface
                 continue
-            if gate is None:
-                gate = gate_component(directory, f"{identifier(design.project.name)}_drop_gate")
-                components.append(gate)
-            interfaces[(converter.block, "out0")] = _gate(
-                builder, label, interface, gate.entity, converter.id
+            interfaces[(converter.block, "out0")] = guards.protect(
+                builder, label, converter, interface, _wire_dma
             )
+    components += guards.components
+    buffers |= guards.buffers
 
     hardware_types: dict[str, AcceleratorHardware] = {}
     for block in design.blocks_of(BlockKind.ACCELERATOR):
@@ -222,23 +220,6 @@ def generate_system(
     )
 
 
-def _gate(
-    builder: TopBuilder, label: str, interface: Interface, gate: EntityDecl, subscriber: int
-) -> Interface:
-    """Put a drop gate behind a subscriber; return the interface its consumers see."""
-    cell = f"{label}_drop_gate"
-    builder.cell(cell, gate)
-    builder.wire(interface[f"{MESSAGE}_valid"], Terminal(cell, "s_valid"))
-    builder.wire(interface[f"{MESSAGE}_error"], Terminal(cell, "s_error"))
-    builder.wire(Terminal(label, "error_reason"), Terminal(cell, "s_reason"))
-    builder.wire(Terminal(cell, "s_ready"), interface[f"{MESSAGE}_ready"])
-    for reason in DROP_REASONS:
-        status = builder.netlist.port(status_port(subscriber, reason))
-        builder.connect(Terminal(cell, counter_name(reason)), status)
-    valid, ready = Terminal(cell, "m_valid"), Terminal(cell, "m_ready")
-    return {**interface, f"{MESSAGE}_valid": valid, f"{MESSAGE}_ready": ready}
-
-
 def _top_entity(design: Design) -> EntityDecl:
     width = design.project.bus_width
     ports = [PortDecl(CLOCK, Mode.IN, 1, True), PortDecl(RESET_N, Mode.IN, 1, True)]
@@ -274,13 +255,17 @@ def _check_buffer_memory(design: Design, buffers: Mapping[str, tuple[Buffer, ...
     device = f"the {design.project.fpga_part}'s" if known else "any supported device's"
     # a crossing publisher is no block of the spec: the project stands for it
     location = next((b.location for b in design.blocks if b.name == block), design.project.location)
+    largest = f"holds '{path}' of '{block}'"
+    example = f"{{string: 64, fields: {{{path}: N}}}}"
+    if path == WHOLE_FRAME:
+        largest = f"is the frame guard of '{block}', which holds its largest frame"
+        example = "{string: 64, sequence: 4096}"
     raise RfcError(
-        f"the publishers' buffers need {sum(need.values()):,} block RAMs of 36 Kb at the "
-        f"project's maxima, more than {device} {have:,}; the largest holds '{path}' of "
-        f"'{block}' ({need[(block, path)]:,})",
+        f"the logic's buffers need {sum(need.values()):,} block RAMs of 36 Kb at the "
+        f"project's maxima, more than {device} {have:,}; the largest {largest} "
+        f"({need[(block, path)]:,})",
         location=location,
-        hint=f"give the project smaller maxima, e.g. maxima: {{string: 64, fields: {{{path}: N}}}} "
-        "(docs/spec.md)",
+        hint=f"give the project smaller maxima, e.g. maxima: {example} (docs/spec.md)",
     )
 
 

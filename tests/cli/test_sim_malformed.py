@@ -118,7 +118,7 @@ def accepted(types: MessageTypes, message: str, frame: bytes) -> bool:
     return MAXIMA.beyond(layout, values) is None
 
 
-SLOW = pytest.mark.slow  # a JointState system takes about 25 s to build and simulate
+SLOW = pytest.mark.slow  # a JointState system takes 10 to 25 s to build and simulate
 #: The gate and the guard, each on both middlewares and all three widths (tests/lib/converters/
 #: test_malformed.py runs the subscriber itself on every pair).
 CASES = [

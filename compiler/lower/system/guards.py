@@ -16,17 +16,10 @@ from pathlib import Path
 
 from rfc.ir.infrastructure import Converter
 from rfc.lib.converters.buffers import Buffer
-from rfc.lib.converters.guard import frame_guard, guard_ports
-from rfc.lib.converters.malformed import (
-    DROP_REASONS,
-    counter_name,
-    drop_gate,
-    gate_ports,
-    status_port,
-)
+from rfc.lib.converters.malformed import DROP_REASONS, counter_name, status_port
 from rfc.lib.converters.plan import accelerator_ports, plan
 from rfc.lib.converters.ports import PortRole, Side
-from rfc.lower.system.components import Component, convert
+from rfc.lower.system.components import Component, gate_component, guard_component
 from rfc.lower.system.interfaces import MESSAGE
 from rfc.lower.system.top import Interface, Terminal, TopBuilder
 from rfc.messages.limits import Limits
@@ -85,9 +78,7 @@ class SubscriberGuards:
         self, builder: TopBuilder, label: str, interface: Interface, subscriber: int
     ) -> Interface:
         if self._gate is None:
-            what = "drops and counts malformed frames (rfc)"
-            name = f"{self.prefix}_drop_gate"
-            self._gate = convert(name, gate_ports(), drop_gate, self.directory, what)
+            self._gate = gate_component(self.directory, f"{self.prefix}_drop_gate")
             self.components.append(self._gate)
         cell = f"{label}_drop_gate"
         builder.cell(cell, self._gate.entity)
@@ -108,11 +99,7 @@ class SubscriberGuards:
         assert bound is not None, "maxima bound every frame"
         depth = ceil((bound + (CDR_PAD if converters.is_cdr else 0)) / lanes)
         cell = f"{label}_guard"
-        what = f"store-and-forward check of {converter.layout.display_name} frames (rfc)"
-        component = convert(
-            cell, guard_ports(lanes), frame_guard, self.directory, what, plan=converters,
-            depth=depth,
-        )  # fmt: skip
+        component = guard_component(converters, depth, self.directory, cell)
         self.components.append(component)
         self.buffers[converter.block] = (Buffer("frame", WHOLE_FRAME, depth, self.width),)
         builder.cell(cell, component.entity)

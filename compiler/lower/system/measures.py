@@ -46,7 +46,10 @@ def latency_section(design: Design, system: SystemHardware) -> ReportSection:
         "simulator: subscriber from the first beat to its fields, accelerator from its inputs "
         "to its outputs, publisher from its fields to the last beat (— where rfc cannot "
         "simulate the block: VHDL and HLS accelerators). Targets: DESIGN.md §12 (frame size "
-        "is the largest frame for variable-size messages).",
+        "is the largest frame for variable-size messages). A subscriber listed with a "
+        "`(whole frame)` buffer under *Buffer memory* has a frame guard in front, which adds "
+        "the frame's whole transfer and the check's parse before the subscriber's cycles "
+        "(docs/converters.md, Malformed input); they are not included here.",
         "",
         *markdown_table(["block", "name", "cycles", "target"], rows, (False, False, True, True)),
     ]

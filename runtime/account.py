@@ -7,6 +7,9 @@ accelerator, or is counted as dropped where it was dropped and why. Reasons:
 - ``malformed``: bytes that are not a valid message of their type.
 - ``maximum``: a string or sequence longer than the project's ``maxima``, which the logic's
   subscriber converter was built for (it would drop the message).
+- ``logic:<reason>``: a frame the logic's subscriber dropped (``truncated``, ``maximum``,
+  ``trailing``, ``encoding``), read from its status registers; only when the processor sends
+  malformed messages instead of refusing them (``rfc sim --send-malformed``).
 - ``protocol:<reason>``: PL→PS chunks breaking the wire protocol (docs/protocol.md), counted
   per message lost; ``protocol:id`` is a chunk of a publisher id the system does not have,
   ``protocol:unfinished`` a message still incomplete when the run ended.

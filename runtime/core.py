@@ -13,7 +13,7 @@ stamp the driver passes to `receive` (the replay: the stamp of the newest input 
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from enum import StrEnum
 
@@ -72,11 +72,16 @@ class Runtime:
     Args:
         plan: The routes of the system.
         queues: The callback queue configuration.
+        screen: Refuse malformed messages here (``malformed``); else send them to the logic,
+            whose subscribers drop them (``logic:<reason>``, read with `logic_drops`).
     """
 
-    def __init__(self, plan: RuntimePlan, queues: QueueConfig | None = None) -> None:
+    def __init__(
+        self, plan: RuntimePlan, queues: QueueConfig | None = None, *, screen: bool = True
+    ) -> None:
         self.plan = plan
         self.queues = queues or QueueConfig()
+        self.screen = screen
         ids = [c.id for c in plan.logic_inputs]
         self.scheduler: SoftwareScheduler[Queued] = (
             PerSubscriberLRU(dict.fromkeys(ids, self.queues.depth), self.queues.overflow)
@@ -169,6 +174,12 @@ class Runtime:
             if accelerator.waiting():
                 self.account.drop(name, "unmatched", accelerator.waiting())
 
+    def logic_drops(self, counts: Mapping[tuple[int, str], int]) -> None:
+        """Count what the logic's subscribers dropped, by (subscriber id, reason) as it reports."""
+        for (subscriber, reason), count in counts.items():
+            if count:
+                self.account.drop(self.plan.subscriber_names[subscriber], f"logic:{reason}", count)
+
     def _deliver(
         self, routes: Iterable[Route], data: bytes, stamp: int, now: int, out: list[Published]
     ) -> None:
@@ -192,6 +203,8 @@ class Runtime:
         It drops what is not a message of its type and what holds a string or sequence longer
         than the maxima it was built for; both are counted here rather than lost in the logic.
         """
+        if not self.screen:
+            return None
         layout = self._logic_layouts[subscriber]
         try:
             values = decode(layout, data)

@@ -39,6 +39,7 @@ from rfc.runtime.core import Published, QueueConfig, QueuePolicy, Runtime
 from rfc.runtime.protocol import Chunk
 from rfc.runtime.records import write_records
 from rfc.runtime.stall import StallError, StallWatch, largest_output, pending_work
+from rfc.runtime.status import read_status
 
 
 class _Replay:
@@ -167,7 +168,8 @@ async def replay_through_logic(dut: object) -> None:
     job = json.loads(Path(os.environ["RFC_SIM_JOB"]).read_text())
     design = compile_spec(job["spec"])
     queues = QueueConfig(QueuePolicy(job["policy"]), job["depth"])
-    replay = _Replay(dut, job, Runtime(DesignPlan(design), queues))
+    runtime = Runtime(DesignPlan(design), queues, screen=job["screen"])
+    replay = _Replay(dut, job, runtime)
     cocotb.start_soon(Clock(dut.aclk, replay.period_ns, unit="ns").start())
     dut.aresetn.value = 0
     await ClockCycles(dut.aclk, 4)
@@ -180,5 +182,6 @@ async def replay_through_logic(dut: object) -> None:
     except StallError as exc:
         Path(job["stalled"]).write_text(json.dumps({"message": exc.message, "hint": exc.hint}))
         return
+    runtime.logic_drops(read_status(dut, runtime.plan.subscriber_names))
     write_records(Path(job["results"]), replay.published)
     Path(job["account"]).write_text(json.dumps(replay.runtime.account.to_json()))

@@ -83,6 +83,7 @@ def simulate_with_ghdl(
     workdir: Path,
     *,
     queues: QueueConfig,
+    screen: bool = True,
     drain_cycles: int = DEFAULT_DRAIN_CYCLES,
     stall_cycles: int = DEFAULT_STALL_CYCLES,
     seed: int = 1,
@@ -97,6 +98,8 @@ def simulate_with_ghdl(
         top: The logic's top-level (from a `TopProvider`).
         workdir: Scratch folder (VHDL, simulation build, results).
         queues: The processor's callback queues.
+        screen: Whether the processor refuses malformed messages itself (else the logic's
+            subscribers drop them; the account reads their counts, ``logic:<reason>``).
         drain_cycles: Cycles of silence after which the system is idle.
         stall_cycles: Cycles without a completed transfer, while work is pending, after which
             the logic counts as stalled (`rfc.runtime.stall`).
@@ -115,6 +118,7 @@ def simulate_with_ghdl(
         "clock_mhz": design.project.clock_mhz,
         "policy": queues.policy.value,
         "depth": queues.depth,
+        "screen": screen,
         "drain_cycles": drain_cycles,
         "stall_cycles": stall_cycles,
         "seed": seed,

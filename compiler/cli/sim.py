@@ -87,6 +87,14 @@ def sim(
     as_json: Annotated[
         bool, typer.Option("--json", help="Print the account as one JSON document.")
     ] = False,
+    send_malformed: Annotated[
+        bool,
+        typer.Option(
+            "--send-malformed",
+            help="Send malformed messages to the logic too: its subscribers drop them and count "
+            "why (logic:<reason>) instead of the processor refusing them (malformed).",
+        ),
+    ] = False,
     top_provider: Annotated[
         str | None, typer.Option("--top-provider", hidden=True, metavar="MODULE:FUNCTION")
     ] = None,
@@ -133,7 +141,8 @@ def sim(
     if limit is not None or topics:
         bag = _subset(ctx, bag, types, topic_names, limit)
     queues = QueueConfig(queue, depth)
-    runtime = Runtime(plan, queues)  # finds every ROS-SW function before anything runs
+    # finds every ROS-SW function before anything runs
+    runtime = Runtime(plan, queues, screen=not send_malformed)
     run = _Run(
         bag, types, topic_names, runtime, backend, drain_cycles, stall_cycles, seed, top_provider
     )
@@ -225,6 +234,7 @@ class _Run:
             top,
             scratch,
             queues=self.runtime.queues,
+            screen=self.runtime.screen,
             drain_cycles=self.drain_cycles,
             stall_cycles=self.stall_cycles,
             seed=self.seed,

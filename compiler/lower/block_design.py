@@ -81,8 +81,12 @@ def block_design(netlist: Netlist) -> BlockDesign:
             raise NetlistError(f"{target.text} <= {source.text} has no block-design form")
     return BlockDesign(
         cells=tuple(cells),
+        # a net of one pin is a top-level output nothing in the design reads (the status
+        # registers, docs/protocol.md): IP Integrator cannot draw it, so it stays open
         nets=tuple(
-            (name, tuple(members)) for name, members in pins.items() if name not in (CLOCK, RESET)
+            (name, tuple(members))
+            for name, members in pins.items()
+            if name not in (CLOCK, RESET) and len(members) > 1
         ),
         constants=tuple(constants),
         clock_pins=tuple(pins.get(CLOCK, ())),

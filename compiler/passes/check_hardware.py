@@ -14,6 +14,7 @@ import inspect
 from collections import defaultdict
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, replace
+from math import ceil
 from typing import Any, ClassVar
 
 from rfc.errors import RfcError, SourceLocation
@@ -30,13 +31,18 @@ from rfc.ir.model import (
 from rfc.lib.converters.buffers import Buffer, buffers_of
 from rfc.lib.converters.plan import plan
 from rfc.lib.converters.ports import Direction as PinDirection
-from rfc.lib.converters.ports import Port, PortRole, Side, accelerator_signature
-from rfc.lib.converters.steps import Plan
+from rfc.lib.converters.ports import Port, PortRole, Side, accelerator_signature, ports_of
+from rfc.lib.converters.steps import ROOT, Plan
 from rfc.lib.devices import block_rams, bram36
 from rfc.messages.limits import Limits
+from rfc.passes.frame_size import frame_bound
 from rfc.spec.python_sources import function_in
 from rfc.toolchain import GhdlError, VhdlEntity, read_entities
 
+#: Pad bytes a ROS 2 frame may carry after its message (to a multiple of 4).
+CDR_PAD = 3
+#: What a frame guard's buffer holds, as the report and the block-RAM check name it.
+WHOLE_FRAME = "(whole frame)"
 #: Ports every accelerator has besides its message pins.
 CLOCK, RESET = "clk", "rst"
 _CLOCK_PORTS = (
@@ -67,6 +73,10 @@ class CheckHardware:
                 chosen = located(lambda c=converter: converter_plan(c, limits), location)
                 if side is Side.PUBLISHER and (held := buffers_of(chosen)):
                     buffers[converter.block] = held
+                if side is Side.SUBSCRIBER and (
+                    guard := subscriber_guard(converter, chosen, limits)
+                ):
+                    buffers[converter.block] = (guard,)
         checked: set[str] = set()
         for block in design.blocks_of(BlockKind.ACCELERATOR):
             if block.name in infrastructure.software:
@@ -276,6 +286,26 @@ def _streamed(design: Design, block_name: str) -> Iterator[str]:
                 yield leaf.path
 
 
+def subscriber_guard(converter: Converter, chosen: Plan, limits: Limits) -> Buffer | None:
+    """The frame guard's buffer in front of a subscriber that streams, else None.
+
+    A subscriber hands strings and sequences on while it parses; a guard holds the whole frame
+    until it is known well-formed, so no part of a malformed frame reaches a consumer
+    (docs/converters.md).
+    """
+    streamed = any(
+        p.role is PortRole.TDATA or (p.role is PortRole.VALID and p.group != ROOT)
+        for p in ports_of(chosen, Side.SUBSCRIBER)
+    )
+    if not streamed:
+        return None
+    lanes = converter.bus_width // 8
+    bound = frame_bound(converter.layout, limits)
+    assert bound is not None, "maxima bound every frame"
+    depth = ceil((bound + (CDR_PAD if chosen.is_cdr else 0)) / lanes)
+    return Buffer("frame", WHOLE_FRAME, depth, converter.bus_width)
+
+
 def check_buffer_memory(design: Design, buffers: Mapping[str, tuple[Buffer, ...]]) -> None:
     """Refuse buffers that need more block RAM than the part has, naming the largest one."""
     if not buffers:
@@ -290,13 +320,17 @@ def check_buffer_memory(design: Design, buffers: Mapping[str, tuple[Buffer, ...]
     device = f"the {design.project.fpga_part}'s" if known else "any supported device's"
     # a crossing publisher is no block of the spec: the project stands for it
     location = next((b.location for b in design.blocks if b.name == block), design.project.location)
+    largest = f"holds '{path}' of '{block}'"
+    example = f"{{string: 64, fields: {{{path}: N}}}}"
+    if path == WHOLE_FRAME:
+        largest = f"is the frame guard of '{block}', which holds its largest frame"
+        example = "{string: 64, sequence: 4096}"
     raise RfcError(
-        f"the publishers' buffers need {sum(need.values()):,} block RAMs of 36 Kb at the "
-        f"project's maxima, more than {device} {have:,}; the largest holds '{path}' of "
-        f"'{block}' ({need[(block, path)]:,})",
+        f"the logic's buffers need {sum(need.values()):,} block RAMs of 36 Kb at the "
+        f"project's maxima, more than {device} {have:,}; the largest {largest} "
+        f"({need[(block, path)]:,})",
         location=location,
-        hint=f"give the project smaller maxima, e.g. maxima: {{string: 64, fields: {{{path}: N}}}} "
-        "(docs/spec.md)",
+        hint=f"give the project smaller maxima, e.g. maxima: {example} (docs/spec.md)",
     )
 
 

@@ -28,7 +28,7 @@ DATA_ROLES = (PortRole.FIELD, PortRole.LENGTH, PortRole.COUNT)
 
 @dataclass(frozen=True)
 class Buffer:
-    """One FIFO in front of a publisher.
+    """One FIFO in front of a publisher (or the whole-frame buffer of a subscriber's guard).
 
     Attributes:
         channel: The sub-stream or element channel it holds.

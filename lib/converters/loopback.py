@@ -14,7 +14,15 @@ from typing import Any
 from myhdl import Signal, block, intbv
 
 from rfc.lib.converters.buffers import DATA_ROLES, stream_buffers
-from rfc.lib.converters.ports import COUNTER_BITS, Direction, Port, PortRole, Side, ports_of
+from rfc.lib.converters.ports import (
+    COUNTER_BITS,
+    REASON_BITS,
+    Direction,
+    Port,
+    PortRole,
+    Side,
+    ports_of,
+)
 from rfc.lib.converters.publisher import rfc_publisher
 from rfc.lib.converters.steps import ROOT, Plan
 from rfc.lib.converters.subscriber import rfc_subscriber
@@ -66,6 +74,7 @@ def rfc_loopback(plan: Plan, **ports: Any) -> Any:
     for name in ("m_axis_tdata", "m_axis_tkeep", "m_axis_tvalid", "m_axis_tready", "m_axis_tlast"):
         pub[name] = ports[name]
     sub["error_count"] = ports["error_count"]
+    sub["error_reason"] = Signal(intbv(0)[REASON_BITS:])  # the loopback reports the count only
     pub["frame_length"] = ports["frame_length"]
     if plan.store_and_forward:
         pub["error_count"] = Signal(intbv(0)[COUNTER_BITS:])  # overflows: none, by sizing

@@ -48,6 +48,8 @@ ROOT_CHANNEL = 0
 
 #: Bits of the error counter and of the frame-length port.
 COUNTER_BITS = 32
+#: Bits of the subscriber's ``error_reason`` (`rfc.lib.converters.malformed.Reason`, 0 to 4).
+REASON_BITS = 3
 
 
 class Side(StrEnum):
@@ -82,6 +84,7 @@ class PortRole(StrEnum):
     TREADY = "tready"
     TLAST = "tlast"
     ERROR_COUNT = "error_count"
+    ERROR_REASON = "error_reason"
     FRAME_LENGTH = "frame_length"
 
 
@@ -286,6 +289,8 @@ def dma_ports(plan: Plan, side: Side) -> tuple[Port, ...]:
         ports.append(Port("frame_length", COUNTER_BITS, Direction.OUT, PortRole.FRAME_LENGTH))
     if side is Side.SUBSCRIBER or plan.store_and_forward:
         ports.append(Port("error_count", COUNTER_BITS, Direction.OUT, PortRole.ERROR_COUNT))
+    if side is Side.SUBSCRIBER:
+        ports.append(Port("error_reason", REASON_BITS, Direction.OUT, PortRole.ERROR_REASON))
     return tuple(ports)
 
 

@@ -7,13 +7,14 @@ leave through one shared output register demultiplexed to their sub-streams; eac
 sequence of messages or strings is handed over on its channel before the next is parsed.
 
 Malformed frames — early ``tlast``, a length beyond its maximum, a CDR string without its NUL,
-trailing bytes beyond ROS 2's padding to 4, a wrong CDR encapsulation — raise ``msg_error``
-and count in ``error_count``. From the first error on, the parser *aborts*: it stops reading
-the frame and walks the rest of the plan on zeros (lengths not yet read become 0), so every
-stream announced so far still delivers its announced length and every channel its elements;
-then it drops the frame's remaining bytes up to ``tlast`` and presents the record with
-``msg_error`` set. It never waits for anything but the frame's own bytes and the consumer's
-ready signals, so it never hangs.
+trailing bytes beyond ROS 2's padding to 4, a wrong CDR encapsulation — raise ``msg_error``,
+give their `Reason` on ``error_reason`` and count in ``error_count``. From the first error on,
+the parser *aborts*: it stops reading the frame and walks the rest of the plan on zeros
+(lengths not yet read become 0), so every stream announced so far still delivers its announced
+length and every channel its elements; then it drops the frame's remaining bytes up to
+``tlast`` and presents the record with ``msg_error`` set (the system's `drop_gate` takes it).
+It never waits for anything but the frame's own bytes and the consumer's ready signals, so it
+never hangs.
 """
 
 from __future__ import annotations
@@ -23,13 +24,27 @@ from typing import Any
 from myhdl import Constant, Signal, always_comb, always_seq, block, concat, intbv
 
 from rfc.lib.converters.fields import field_captures
+from rfc.lib.converters.malformed import Reason
 from rfc.lib.converters.outputs import element_handshakes, length_registers, stream_outputs
-from rfc.lib.converters.ports import COUNTER_BITS, Side, count_bits, dma_ports, ports_of
+from rfc.lib.converters.ports import (
+    COUNTER_BITS,
+    REASON_BITS,
+    Side,
+    count_bits,
+    dma_ports,
+    ports_of,
+)
 from rfc.lib.converters.steps import Plan
 from rfc.lib.converters.tables import Kind, tables
 from rfc.lib.converters.window import byte_window
 from rfc.lib.converters.wiring import bits_of, loop_counters, select_bit
 
+TRUNCATED, MAXIMUM, TRAILING, ENCODING = (
+    int(Reason.TRUNCATED),
+    int(Reason.MAXIMUM),
+    int(Reason.TRAILING),
+    int(Reason.ENCODING),
+)
 #: The two bytes a little-endian plain-CDR encapsulation header starts with, as a uint16.
 CDR_ENCAPSULATION = 0x0100
 
@@ -46,7 +61,7 @@ def rfc_subscriber(plan: Plan, **ports: Any) -> Any:
     width = plan.width
     clk, rst = ports["clk"], ports["rst"]
     msg_valid, msg_ready, msg_error = ports["msg_valid"], ports["msg_ready"], ports["msg_error"]
-    error_count = ports["error_count"]
+    error_count, error_reason = ports["error_count"], ports["error_reason"]
     steps = len(plan.steps)
     pc_bits = max(1, (steps - 1).bit_length())
     end_pc = t.end
@@ -90,6 +105,7 @@ def rfc_subscriber(plan: Plan, **ports: Any) -> Any:
     gap, gap_n = (Signal(intbv(start_gap)[3:]) for _ in range(2))
     last4, last4_n = (Signal(intbv(0)[32:]) for _ in range(2))
     abort, abort_n = (Signal(bool(0)) for _ in range(2))
+    cause, cause_n = (Signal(intbv(0)[REASON_BITS:]) for _ in range(2))
     trail, trail_n = (Signal(intbv(0)[3:]) for _ in range(2))
     o_data, o_data_n = (Signal(intbv(0)[8 * out_bytes :]) for _ in range(2))
     o_keep, o_keep_n = (Signal(intbv(0)[out_bytes:]) for _ in range(2))
@@ -195,6 +211,8 @@ def rfc_subscriber(plan: Plan, **ports: Any) -> Any:
         pad = intbv(0)[3:]
         pad[:] = gap & align
         chars = 0
+        why = 0  # the reason of an abort raised this cycle (`Reason`)
+        done = False
 
         if kind == Kind.RECORD:
             if chunk == 0 and pad != 0:
@@ -219,6 +237,7 @@ def rfc_subscriber(plan: Plan, **ports: Any) -> Any:
                 step = 0
                 if ended:
                     abort_n.next = True
+                    why = TRUNCATED
         elif kind == Kind.PAYLOAD:
             if not entered:
                 lengths.next = True
@@ -228,6 +247,9 @@ def rfc_subscriber(plan: Plan, **ports: Any) -> Any:
                     not terminated and length > maximum
                 ):
                     abort_n.next = True
+                    why = MAXIMUM
+                    if terminated and length == 0:
+                        why = ENCODING
                     rem_n.next = 0
                 elif terminated:
                     count.next = length - 1
@@ -250,6 +272,7 @@ def rfc_subscriber(plan: Plan, **ports: Any) -> Any:
                     step = 0
                     if ended:
                         abort_n.next = True
+                        why = TRUNCATED
             else:
                 step = width
                 if rem < width:
@@ -266,6 +289,7 @@ def rfc_subscriber(plan: Plan, **ports: Any) -> Any:
                         for bit in range(8):
                             if front[8 * (int(rem[4:]) - 1) + bit]:
                                 abort_n.next = True
+                                why = ENCODING
                     if selected and chars > 0:
                         assembled = intbv(0)[8 * out_bytes :]
                         assembled[:] = o_data
@@ -297,10 +321,12 @@ def rfc_subscriber(plan: Plan, **ports: Any) -> Any:
                     step = 0
                     if ended and avail < rem and not abort:
                         abort_n.next = True
+                        why = TRUNCATED
         elif kind == Kind.LOOP:
             lengths.next = True
             if length > maximum:
                 abort_n.next = True
+                why = MAXIMUM
                 pc_n.next = target
             elif length == 0:
                 pc_n.next = target
@@ -327,10 +353,16 @@ def rfc_subscriber(plan: Plan, **ports: Any) -> Any:
             step = 0
         elif msg_ready and not o_valid:
             finished.next = True
+            done = True
             release.next = True
             pc_n.next = 0
             abort_n.next = False
             trail_n.next = 0
+        cause_n.next = cause
+        if done:
+            cause_n.next = 0
+        elif why != 0 and not abort:
+            cause_n.next = why
         shifted = intbv(0)[8 * width + 32 :]
         shifted[:] = concat(data, last4) >> (8 * step)
         last4_n.next = shifted[32:]
@@ -349,6 +381,7 @@ def rfc_subscriber(plan: Plan, **ports: Any) -> Any:
         gap.next = gap_n
         last4.next = last4_n
         abort.next = abort_n
+        cause.next = cause_n
         trail.next = trail_n
         o_data.next = o_data_n
         o_keep.next = o_keep_n
@@ -364,6 +397,14 @@ def rfc_subscriber(plan: Plan, **ports: Any) -> Any:
     def verdict() -> None:
         trailing = trail > (gap & allowed)
         failed.next = abort or trailing or header != CDR_ENCAPSULATION
+        if abort:
+            error_reason.next = cause
+        elif header != CDR_ENCAPSULATION:
+            error_reason.next = ENCODING
+        elif trailing:
+            error_reason.next = TRAILING
+        else:
+            error_reason.next = 0
 
     @always_comb
     def message_handshake() -> None:

@@ -126,6 +126,20 @@ def test_block_design_follows_the_netlist():
     assert (design.dma_mm2s, design.dma_s2mm) == ("echo_0/s_axis_mm2s", "echo_0/m_axis_s2mm")
 
 
+def test_a_top_level_output_only_one_cell_drives_is_left_out_of_the_block_design():
+    top = system_netlist()
+    status = Netlist(
+        EntityDecl("system_pl", (*top.entity.ports, PortDecl("status", Mode.OUT, 1, True)))
+    )
+    rst = status.signal("rst", wire=True)
+    status.assign(rst, "not aresetn")
+    connections = {p.name: status.port(p.name) for p in ECHO.ports if "axis" in p.name}
+    connections |= {"clk": status.port("aclk"), "rst": rst, "enable": constant(1, 1, True)}
+    status.instance("echo_0", ECHO, connections | {"seen": status.port("status")})
+    design = block_design(status)
+    assert design.nets == block_design(top).nets  # no net of the lone pin echo_0/seen
+
+
 def test_vivado_script_runs_under_the_stand_ins(tmp_path):
     script = write_build(tmp_path, block_design(system_netlist()))
     record = run_script(script, tmp_path / "vivado.log")

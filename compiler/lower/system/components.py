@@ -2,7 +2,8 @@
 
 Each is a `Component`: its interface as the netlist sees it and its VHDL files. The converters
 come from `rfc.lib.converters`, the manager from `rfc.lib.manager`, the ap_ctrl wrapper of HLS
-cores from `rfc.lib.hls`, the handshake fork of fan-out from `rfc.lib.fork`.
+cores from `rfc.lib.hls`, the handshake fork of fan-out from `rfc.lib.fork`, the gate and the
+guard that drop malformed frames from `rfc.lib.converters.malformed` and `.guard`.
 """
 
 from __future__ import annotations
@@ -18,8 +19,11 @@ from myhdl import ToVHDLWarning
 from rfc.ir.infrastructure import Converter
 from rfc.lib.converters.buffers import Buffer, buffered_ports, buffered_publisher, buffers_of
 from rfc.lib.converters.build import generate
+from rfc.lib.converters.guard import frame_guard, guard_ports
+from rfc.lib.converters.malformed import drop_gate, gate_ports
 from rfc.lib.converters.plan import plan
 from rfc.lib.converters.ports import Direction, Port, PortRole, Side
+from rfc.lib.converters.steps import Plan
 from rfc.lib.converters.toplevel import elaboration, port_signals, top_block
 from rfc.lib.fork import fork_body
 from rfc.lib.hls.adapter import AdapterShape, hls_adapter
@@ -122,6 +126,19 @@ def fork_component(consumers: int, directory: Path, name: str) -> Component:
         ]
     what = f"handshake fork to {consumers} (rfc)"
     return convert(name, ports, fork_body, directory, what, consumers=consumers)
+
+
+def gate_component(directory: Path, name: str) -> Component:
+    """The gate that takes a subscriber's malformed frames and counts them by reason."""
+    what = "drops and counts malformed frames (rfc)"
+    return convert(name, gate_ports(), drop_gate, directory, what)
+
+
+def guard_component(converters: Plan, depth: int, directory: Path, name: str) -> Component:
+    """The store-and-forward guard of one subscriber, with a buffer of `depth` beats."""
+    what = f"store-and-forward check of {converters.layout.display_name} frames (rfc)"
+    ports = guard_ports(converters.width)
+    return convert(name, ports, frame_guard, directory, what, plan=converters, depth=depth)
 
 
 def adapter_component(shape: AdapterShape, directory: Path, name: str) -> Component:

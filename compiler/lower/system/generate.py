@@ -16,8 +16,9 @@ from pathlib import Path
 from rfc.ir.infrastructure import Converter, Scheduler
 from rfc.ir.model import BlockKind, Connection, Design
 from rfc.lib.converters.buffers import Buffer
+from rfc.lib.converters.malformed import DROP_REASONS, status_port
 from rfc.lib.converters.plan import accelerator_ports
-from rfc.lib.converters.ports import Side
+from rfc.lib.converters.ports import COUNTER_BITS, Side
 from rfc.lib.manager.entity import ManagerShape
 from rfc.lib.schedulers.spec import DEFAULT_IDLE, AnySchedulerSpec, SchedulerSpec
 from rfc.lower.netlist import EntityDecl, Mode, Netlist, PortDecl, constant
@@ -28,6 +29,7 @@ from rfc.lower.system.components import (
     fork_component,
     manager_component,
 )
+from rfc.lower.system.guards import SubscriberGuards
 from rfc.lower.system.interfaces import MESSAGE
 from rfc.lower.system.top import CLOCK, RESET_N, Interface, Terminal, TopBuilder, wire_connection
 from rfc.messages.limits import Limits
@@ -130,6 +132,7 @@ def generate_system(
                 Terminal(MANAGER, f"{group}_{signal}"), builder.netlist.port(f"{group}_{signal}")
             )
 
+    guards = SubscriberGuards(identifier(design.project.name), width, directory, limits)
     for side, converters in (
         (Side.SUBSCRIBER, infrastructure.subscribers),
         (Side.PUBLISHER, infrastructure.publishers),
@@ -143,11 +146,17 @@ def generate_system(
             if component.buffers:
                 buffers[converter.block] = component.buffers
             builder.cell(label, component.entity)
-            _wire_dma(builder, label, converter, side)
             pins = accelerator_ports(converter.layout, width, side, limits)
-            names = [p.name for p in pins]
-            port = "out0" if side is Side.SUBSCRIBER else "in0"
-            interfaces[(converter.block, port)] = {n: Terminal(label, n) for n in names}
+            interface = {p.name: Terminal(label, p.name) for p in pins}
+            if side is Side.PUBLISHER:
+                _wire_dma(builder, label, converter, side)
+                interfaces[(converter.block, "in0")] = interface
+                continue
+            interfaces[(converter.block, "out0")] = guards.protect(
+                builder, label, converter, interface, _wire_dma
+            )
+    components += guards.components
+    buffers |= guards.buffers
 
     hardware_types: dict[str, AcceleratorHardware] = {}
     for block in design.blocks_of(BlockKind.ACCELERATOR):
@@ -214,6 +223,12 @@ def _top_entity(design: Design) -> EntityDecl:
             PortDecl(f"{group}_tvalid", data, 1, True),
             PortDecl(f"{group}_tready", back, 1, True),
             PortDecl(f"{group}_tlast", data, 1, True),
+        ]
+    assert design.infrastructure is not None
+    for converter in design.infrastructure.subscribers:
+        ports += [
+            PortDecl(status_port(converter.id, reason), Mode.OUT, COUNTER_BITS)
+            for reason in DROP_REASONS
         ]
     return EntityDecl(top_name(design), tuple(ports))
 

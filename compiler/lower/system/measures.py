@@ -46,7 +46,10 @@ def latency_section(design: Design, system: SystemHardware) -> ReportSection:
         "simulator: subscriber from the first beat to its fields, accelerator from its inputs "
         "to its outputs, publisher from its fields to the last beat (— where rfc cannot "
         "simulate the block: VHDL and HLS accelerators). Targets: DESIGN.md §12 (frame size "
-        "is the largest frame for variable-size messages).",
+        "is the largest frame for variable-size messages). A subscriber listed with a "
+        "`(whole frame)` buffer under *Buffer memory* has a frame guard in front, which adds "
+        "the frame's whole transfer and the check's parse before the subscriber's cycles "
+        "(docs/converters.md, Malformed input); they are not included here.",
         "",
         *markdown_table(["block", "name", "cycles", "target"], rows, (False, False, True, True)),
     ]
@@ -54,7 +57,7 @@ def latency_section(design: Design, system: SystemHardware) -> ReportSection:
 
 
 def buffers_section(system: SystemHardware) -> ReportSection:
-    """The publishers' buffers: what they hold and how much block RAM they take."""
+    """The publishers' and subscribers' buffers: what they hold and how much block RAM."""
     held = [(block, b, bram36(b.bits, b.words)) for block, bs in system.buffers.items() for b in bs]
     rows: list[list[object]] = [
         [f"`{block}`", f"`{b.path}`", b.words, b.bits, f"{b.size_bits / 8192:.1f}", brams]
@@ -64,11 +67,14 @@ def buffers_section(system: SystemHardware) -> ReportSection:
     lines = [
         "A publisher takes a message's strings and sequences only after its other fields (it "
         "needs every length for the frame length), so each gets a FIFO that holds one message "
-        f"at the project's maxima. Together at most {total} block RAMs of 36 Kb (synthesis may "
-        "put the small ones in LUT RAM; an xc7z020 has 140); lower the maxima to shrink them.",
+        "at the project's maxima. A subscriber that hands strings or sequences on holds each "
+        "frame whole (`(whole frame)`) until it is checked, so that a malformed one is dropped "
+        f"before any of it is handed on. Together at most {total} block RAMs of 36 Kb "
+        "(synthesis may put the small ones in LUT RAM; an xc7z020 has 140); lower the maxima "
+        "to shrink them.",
         "",
         *markdown_table(
-            ["publisher", "holds", "words", "bits", "KiB", "BRAM36"],
+            ["block", "holds", "words", "bits", "KiB", "BRAM36"],
             rows,
             (False, False, True, True, True, True),
         ),

@@ -27,6 +27,7 @@ class Parsed:
 
     message: Transactions = field(default_factory=Transactions)
     error: bool = False
+    reason: int = 0
 
 
 def _groups(plan: Plan, side: Side) -> tuple[list, list, list]:
@@ -108,6 +109,7 @@ def simulate_subscriber(plan: Plan, frames: list[bytes], seed: int = 1) -> list[
                 if signals["msg_valid"] and signals["msg_ready"]:
                     current.message.record = {n: int(signals[n]) for n in record_ports}
                     current.error = bool(signals["msg_error"])
+                    current.reason = int(signals["error_reason"])
                     results.append(current)
                     current = Parsed()
                     if len(results) == len(frames):

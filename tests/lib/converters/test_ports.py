@@ -106,7 +106,7 @@ def test_dma_side_is_one_axi_stream_per_direction_with_status():
     converters = plan(layout, 64, LIMITS)
     assert names(dma_ports(converters, Side.SUBSCRIBER)) == [
         "clk", "rst", "s_axis_tdata", "s_axis_tkeep", "s_axis_tvalid", "s_axis_tready",
-        "s_axis_tlast", "error_count",
+        "s_axis_tlast", "error_count", "error_reason",
     ]  # fmt: skip
     assert names(dma_ports(converters, Side.PUBLISHER))[:8] == [
         "clk", "rst", "m_axis_tdata", "m_axis_tkeep", "m_axis_tvalid", "m_axis_tready",

@@ -1,0 +1,110 @@
+"""What stands between a subscriber and its consumers so that malformed frames end in the logic.
+
+A subscriber whose consumers get only fixed-size fields presents a whole frame at once, as
+registers with ``msg_valid``: a *drop gate* behind it takes a rejected record before any
+consumer sees it. A subscriber that hands strings or sequences on as sub-streams gets a *frame
+guard* in front instead: the frame is checked whole in a buffer before the subscriber sees it
+(`rfc.lib.converters.guard`). Either counts what it drops by reason on the top level's status
+ports (docs/protocol.md).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from pathlib import Path
+
+from rfc.ir.infrastructure import Converter
+from rfc.lib.converters.buffers import Buffer
+from rfc.lib.converters.malformed import DROP_REASONS, counter_name, status_port
+from rfc.lib.converters.plan import plan
+from rfc.lib.converters.ports import Side
+from rfc.lib.converters.steps import Plan
+from rfc.lower.system.components import Component, gate_component, guard_component
+from rfc.lower.system.interfaces import MESSAGE
+from rfc.lower.system.top import Interface, Terminal, TopBuilder
+from rfc.messages.limits import Limits
+from rfc.passes.check_hardware import subscriber_guard
+
+#: Joins a converter's DMA side to the manager: (builder, cell label, converter, side).
+DmaWiring = Callable[[TopBuilder, str, Converter, Side], None]
+
+
+class SubscriberGuards:
+    """The gates and guards of a system's subscribers, and the components they need.
+
+    Args:
+        prefix: The project's identifier, which the shared gate entity's name starts with.
+        width: Bus width in bits.
+        directory: Where the VHDL goes.
+        limits: The maxima the converters are built for (they size the guards' buffers).
+    """
+
+    def __init__(self, prefix: str, width: int, directory: Path, limits: Limits) -> None:
+        self.prefix, self.width, self.directory, self.limits = prefix, width, directory, limits
+        self.components: list[Component] = []
+        self.buffers: dict[str, tuple[Buffer, ...]] = {}
+        self._gate: Component | None = None
+
+    def protect(
+        self,
+        builder: TopBuilder,
+        label: str,
+        converter: Converter,
+        interface: Interface,
+        wire_dma: DmaWiring,
+    ) -> Interface:
+        """Wire subscriber `label` to the manager through its protection.
+
+        Returns:
+            What its consumers see of it.
+        """
+        chosen = plan(converter.layout, self.width, self.limits)
+        guard = subscriber_guard(converter, chosen, self.limits)
+        if guard is None:
+            wire_dma(builder, label, converter, Side.SUBSCRIBER)
+            return self._gated(builder, label, interface, converter.id)
+        self._guard(builder, label, converter, chosen, guard, wire_dma)
+        return interface
+
+    def _gated(
+        self, builder: TopBuilder, label: str, interface: Interface, subscriber: int
+    ) -> Interface:
+        if self._gate is None:
+            self._gate = gate_component(self.directory, f"{self.prefix}_drop_gate")
+            self.components.append(self._gate)
+        cell = f"{label}_drop_gate"
+        builder.cell(cell, self._gate.entity)
+        builder.wire(interface[f"{MESSAGE}_valid"], Terminal(cell, "s_valid"))
+        builder.wire(interface[f"{MESSAGE}_error"], Terminal(cell, "s_error"))
+        builder.wire(Terminal(label, "error_reason"), Terminal(cell, "s_reason"))
+        builder.wire(Terminal(cell, "s_ready"), interface[f"{MESSAGE}_ready"])
+        _status(builder, cell, subscriber)
+        valid, ready = Terminal(cell, "m_valid"), Terminal(cell, "m_ready")
+        return {**interface, f"{MESSAGE}_valid": valid, f"{MESSAGE}_ready": ready}
+
+    def _guard(
+        self,
+        builder: TopBuilder,
+        label: str,
+        converter: Converter,
+        converters: Plan,
+        guard: Buffer,
+        wire_dma: DmaWiring,
+    ) -> None:
+        cell = f"{label}_guard"
+        component = guard_component(converters, guard.words, self.directory, cell)
+        self.components.append(component)
+        self.buffers[converter.block] = (guard,)
+        builder.cell(cell, component.entity)
+        wire_dma(builder, cell, converter, Side.SUBSCRIBER)
+        for signal in ("tdata", "tkeep", "tvalid", "tlast"):
+            builder.wire(Terminal(cell, f"m_axis_{signal}"), Terminal(label, f"s_axis_{signal}"))
+        builder.wire(Terminal(label, "s_axis_tready"), Terminal(cell, "m_axis_tready"))
+        _status(builder, cell, converter.id)
+
+
+def _status(builder: TopBuilder, cell: str, subscriber: int) -> None:
+    """Put a gate's or guard's counters on the top level's status ports."""
+    for reason in DROP_REASONS:
+        status = builder.netlist.port(status_port(subscriber, reason))
+        builder.connect(Terminal(cell, counter_name(reason)), status)

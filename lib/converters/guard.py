@@ -1,0 +1,192 @@
+"""Store and forward in front of a subscriber whose messages carry strings or sequences.
+
+Such a subscriber hands its strings and sequences on as sub-streams while the frame arrives, so
+a frame found malformed at its end would already have reached the consumer in part. The guard
+holds the whole frame in block RAM while a second instance of the same subscriber (the
+*checker*, every output taken at once) parses it; only when the checker finds it well formed
+does the guard send the frame on to the real subscriber, else it drops it and counts it by
+reason (`rfc.lib.converters.malformed.Reason`). One frame at a time: the cost is one frame's
+transfer of latency and a buffer of the largest frame the maxima allow. A frame longer than the
+buffer cannot be well formed; it is dropped as ``maximum`` unless the checker names a reason.
+"""
+
+from __future__ import annotations
+
+from enum import IntEnum
+from typing import Any
+
+from myhdl import Signal, always_comb, always_seq, block, intbv
+
+from rfc.lib.converters.malformed import DROP_REASONS, Reason, counter_name, reason_counter
+from rfc.lib.converters.ports import (
+    COUNTER_BITS,
+    REASON_BITS,
+    Direction,
+    Port,
+    PortRole,
+    Side,
+    ports_of,
+)
+from rfc.lib.converters.ram import ram
+from rfc.lib.converters.steps import Plan
+from rfc.lib.converters.subscriber import rfc_subscriber
+from rfc.lib.converters.toplevel import port_signals
+
+
+class _State(IntEnum):
+    STORE = 0  # taking the frame into the buffer and the checker
+    VERDICT = 1  # the frame is in; waiting for the checker's record
+    SEND = 2  # sending the buffered frame to the subscriber
+
+
+def guard_ports(width: int) -> list[Port]:
+    """The guard's ports for a bus of `width` bytes, in declaration order."""
+    ports = [Port("clk", 1, Direction.IN, PortRole.CLOCK), Port("rst", 1, Direction.IN,
+             PortRole.RESET)]  # fmt: skip
+    for bus, out, into in (
+        ("s_axis", Direction.IN, Direction.OUT),
+        ("m_axis", Direction.OUT, Direction.IN),
+    ):
+        ports += [
+            Port(f"{bus}_tdata", 8 * width, out, PortRole.TDATA, bus),
+            Port(f"{bus}_tkeep", width, out, PortRole.TKEEP, bus),
+            Port(f"{bus}_tvalid", 1, out, PortRole.TVALID, bus),
+            Port(f"{bus}_tready", 1, into, PortRole.TREADY, bus),
+            Port(f"{bus}_tlast", 1, out, PortRole.TLAST, bus),
+        ]
+    ports += [
+        Port(counter_name(r), COUNTER_BITS, Direction.OUT, PortRole.ERROR_COUNT)
+        for r in DROP_REASONS
+    ]
+    return ports
+
+
+@block
+def frame_guard(plan: Plan, depth: int, **ports: Any) -> Any:
+    """Check each frame of `plan` whole before it reaches the subscriber; `ports`: `guard_ports`.
+
+    Args:
+        plan: The subscriber's plan (the checker is built from it).
+        depth: Beats the buffer holds: the largest well-formed frame.
+        ports: One signal per name of `guard_ports`.
+    """
+    clk, rst = ports["clk"], ports["rst"]
+    s_tdata, s_tkeep, s_tvalid, s_tready, s_tlast = (
+        ports[f"s_axis_{n}"] for n in ("tdata", "tkeep", "tvalid", "tready", "tlast")
+    )
+    m_tdata, m_tkeep, m_tvalid, m_tready, m_tlast = (
+        ports[f"m_axis_{n}"] for n in ("tdata", "tkeep", "tvalid", "tready", "tlast")
+    )
+    full_keep = (1 << plan.width) - 1
+    state = Signal(intbv(0, min=0, max=len(_State)))
+    written = Signal(intbv(0, min=0, max=depth + 1))
+    read = Signal(intbv(0, min=0, max=depth + 1))
+    overflow = Signal(bool(0))
+    last_keep = Signal(intbv(0)[plan.width :])
+    out_valid, out_last = Signal(bool(0)), Signal(bool(0))
+    w_enable, r_enable = Signal(bool(0)), Signal(bool(0))
+    address = Signal(intbv(0, min=0, max=max(2, depth)))
+    r_address = Signal(intbv(0, min=0, max=max(2, depth)))
+    r_data = Signal(intbv(0)[8 * plan.width :])
+    c_valid, c_ready = Signal(bool(0)), Signal(bool(0))
+    drop, reason = Signal(bool(0)), Signal(intbv(0)[REASON_BITS:])
+
+    checker = port_signals(ports_of(plan, Side.SUBSCRIBER))
+    readies = [checker[p.name] for p in ports_of(plan, Side.SUBSCRIBER) if p.direction is
+               Direction.IN]  # fmt: skip
+    verdict, failed = checker["msg_valid"], checker["msg_error"]
+    cause = Signal(intbv(0)[REASON_BITS:])
+    parser = rfc_subscriber(
+        plan,
+        clk=clk,
+        rst=rst,
+        s_axis_tdata=s_tdata,
+        s_axis_tkeep=s_tkeep,
+        s_axis_tvalid=c_valid,
+        s_axis_tready=c_ready,
+        s_axis_tlast=s_tlast,
+        error_count=Signal(intbv(0)[COUNTER_BITS:]),
+        error_reason=cause,
+        **checker,
+    )
+    storing, waiting, sending = int(_State.STORE), int(_State.VERDICT), int(_State.SEND)
+    maximum = int(Reason.MAXIMUM)
+
+    @always_comb
+    def take() -> None:
+        s_tready.next = state == storing and c_ready
+        c_valid.next = state == storing and s_tvalid
+        w_enable.next = state == storing and s_tvalid and c_ready and written < depth
+        address.next = 0
+        if written < depth:
+            address.next = written
+        r_address.next = 0
+        if read < depth:
+            r_address.next = read
+        r_enable.next = state == sending and read < written and (not out_valid or m_tready)
+        drop.next = state == waiting and verdict and (failed or overflow)
+        reason.next = maximum
+        if failed:
+            reason.next = cause
+
+    @always_comb
+    def give() -> None:
+        m_tdata.next = r_data
+        m_tvalid.next = out_valid
+        m_tlast.next = out_last
+        m_tkeep.next = full_keep
+        if out_last:
+            m_tkeep.next = last_keep
+
+    @always_seq(clk.posedge, reset=rst)
+    def control() -> None:
+        if state == storing:
+            if s_tvalid and c_ready:
+                if written < depth:
+                    written.next = written + 1
+                else:
+                    overflow.next = True
+                if s_tlast:
+                    last_keep.next = s_tkeep
+                    state.next = waiting
+        elif state == waiting:
+            if verdict:
+                if failed or overflow:
+                    state.next = storing
+                    written.next = 0
+                    overflow.next = False
+                else:
+                    state.next = sending
+                    read.next = 0
+        else:
+            if r_enable:
+                read.next = read + 1
+                out_valid.next = True
+                out_last.next = read + 1 == written
+            elif m_tready:
+                out_valid.next = False
+            if out_valid and m_tready and out_last:
+                out_valid.next = False
+                out_last.next = False
+                state.next = storing
+                written.next = 0
+                read.next = 0
+
+    memory = ram(clk, w_enable, address, s_tdata, r_enable, r_address, r_data, depth)
+    counters = [
+        reason_counter(clk, rst, drop, drop, reason, ports[counter_name(r)], int(r))
+        for r in DROP_REASONS
+    ]
+    held = [held_high(clk, rst, ready) for ready in readies]  # the checker takes everything
+    return parser, take, give, control, memory, counters, held
+
+
+@block
+def held_high(clk: Any, rst: Any, signal: Any) -> Any:
+    """Hold `signal` at 1 (a register, so that no tool reads an initial value differently)."""
+
+    @always_seq(clk.posedge, reset=rst)
+    def hold() -> None:
+        signal.next = 1
+
+    return hold

@@ -17,7 +17,7 @@ ROOT = Path(__file__).resolve().parents[2]
 CLASH = """
 project: {name: Clash, middleware: ROS2, busWidth: 64, msg_paths: [./msgs]}
 accelerators:
-  - name: Pass
+  - name: PassClash
     type: MyHDL
     sources: ./pass.py
     top: pass_through
@@ -26,7 +26,7 @@ accelerators:
       output: [{message: clash_msgs/Clash}]
 blocks:
   - {name: sub, type: ROS>accelerator, message: clash_msgs/Clash, outgoing: [{name: acc}]}
-  - {name: acc, type: Pass, outgoing: [{name: pub}]}
+  - {name: acc, type: PassClash, outgoing: [{name: pub}]}
   - {name: pub, type: accelerator>ROS, message: clash_msgs/Clash}
 """
 STREAM_FAN_OUT = fan_out().replace("geometry_msgs/Twist", "sensor_msgs/CompressedImage")
@@ -73,7 +73,7 @@ CASES = {
     ),
     "buffers beyond the block ram": (
         multi_type_at_default_maxima,
-        "the publishers' buffers need 2,308 block RAMs of 36 Kb at the project's maxima",
+        "the logic's buffers need 4,619 block RAMs of 36 Kb at the project's maxima",
     ),
 }
 

@@ -24,7 +24,12 @@ from rfc.lib.converters.ports import Direction, Port, PortRole
 from rfc.lib.hls.adapter import AdapterShape
 from rfc.lower.hls_signature import HlsArgument, read_top_function
 from rfc.lower.netlist import EntityDecl, Mode, PortDecl
-from rfc.lower.system.components import Component, adapter_component, convert
+from rfc.lower.system.components import (
+    Component,
+    adapter_component,
+    convert,
+    synthesized_netlist,
+)
 from rfc.lower.system.interfaces import MESSAGE, Pin, accelerator_pins
 from rfc.lower.system.latency import accelerator_latency
 from rfc.messages.limits import Limits
@@ -91,7 +96,7 @@ def accelerator_hardware(
     if accelerator.kind is AcceleratorKind.MYHDL:
         return _myhdl(accelerator, ports, directory)
     if accelerator.kind is AcceleratorKind.VHDL:
-        return _vhdl(accelerator, ports)
+        return _vhdl(accelerator, ports, directory)
     if accelerator.kind is AcceleratorKind.HLS:
         return _hls(accelerator, block, ports, directory)
     raise RfcError(f"accelerator '{accelerator.name}' is ROS-SW: it has no hardware")
@@ -190,7 +195,7 @@ def _signal_port(declared: PortDecl) -> Port:
 
 
 def _vhdl(
-    accelerator: AcceleratorType, ports: Mapping[str, tuple[Pin, ...]]
+    accelerator: AcceleratorType, ports: Mapping[str, tuple[Pin, ...]], directory: Path
 ) -> AcceleratorHardware:
     top = (accelerator.top or accelerator.name).lower()
     found = None
@@ -232,7 +237,8 @@ def _vhdl(
             hint="docs/accelerators.md lists the ports an accelerator has for its messages",
         )
     entity = EntityDecl(found.name, tuple(expected))
-    component = Component(entity, tuple(accelerator.sources))
+    netlist = synthesized_netlist(tuple(accelerator.sources), found.name, directory)
+    component = Component(entity, tuple(accelerator.sources), verilog=netlist)
     return AcceleratorHardware((component,), (("", entity),), pins=_own_pins(ports))
 
 

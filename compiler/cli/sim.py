@@ -46,6 +46,8 @@ class Backend(StrEnum):
 
 
 sim_app = typer.Typer()
+#: The top provider of ``--netlist``: the logic as GHDL synthesizes it.
+NETLIST_TOP_PROVIDER = "rfc.lower.hardware:netlist_top"
 
 
 @sim_app.command("sim")
@@ -88,6 +90,14 @@ def sim(
     top_provider: Annotated[
         str | None, typer.Option("--top-provider", hidden=True, metavar="MODULE:FUNCTION")
     ] = None,
+    netlist: Annotated[
+        bool,
+        typer.Option(
+            "--netlist",
+            help="Simulate GHDL's synthesized netlist of each generated component (the "
+            "structural top level kept): what synthesis makes of the logic.",
+        ),
+    ] = False,
 ) -> None:
     """Replay a bag through the whole system and write each publisher's messages to OUT."""
     from rfc.driver import compile_spec
@@ -107,6 +117,10 @@ def sim(
     topic_names = _match_topics(plan, bag, types)
     queues = QueueConfig(queue, depth)
     runtime = Runtime(plan, queues)  # finds every ROS-SW function before anything runs
+    if netlist:
+        if backend is Backend.MYHDL:
+            raise typer.BadParameter("--netlist simulates VHDL netlists: use --backend ghdl")
+        top_provider = top_provider or NETLIST_TOP_PROVIDER
     run = _Run(
         bag, types, topic_names, runtime, backend, drain_cycles, stall_cycles, seed, top_provider
     )

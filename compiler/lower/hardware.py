@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import tempfile
 from collections.abc import Iterable
+from dataclasses import replace
 from importlib import resources
 from pathlib import Path
 
@@ -28,6 +29,7 @@ from rfc.lower.system.measures import (
     verilog_section,
 )
 from rfc.lower.vivado import VivadoProject, vivado_artifacts
+from rfc.toolchain import GhdlError, synthesize_vhdl
 
 #: Where the generated VHDL goes in the build directory.
 HW = "hw"
@@ -107,6 +109,35 @@ def _hls_run(core: HlsCore, design: Design) -> Iterable[Artifact]:
         + [f"set hls({key}) {value}" for key, value in values]
     )
     yield Artifact(f"{folder}/values.tcl", "HLS tcl", text + "\n")
+
+
+def netlist_top(design: Design, directory: Path) -> SystemHardware:
+    """The logic of `design` for ``rfc sim --netlist``: what synthesis makes of it.
+
+    Each generated component is replaced by GHDL's synthesized netlist of it; the structural
+    top level and VHDL accelerators stay as they are.
+
+    Raises:
+        RfcError: The logic holds an HLS core, or GHDL cannot synthesize a component.
+    """
+    system = simulation_top(design, directory)
+    package, *files, top = system.files
+    netlists = directory / "netlist"
+    netlists.mkdir(exist_ok=True)
+    replaced = []
+    for path in files:
+        if path.parent != directory:  # a VHDL accelerator's own source
+            replaced.append(path)
+            continue
+        try:
+            with tempfile.TemporaryDirectory(prefix="rfc-netlist-") as scratch:
+                text = synthesize_vhdl([package, path], path.stem, Path(scratch))
+        except GhdlError as exc:
+            raise RfcError(f"GHDL could not synthesize {path.stem} for --netlist:\n{exc}") from None
+        netlist = netlists / path.name
+        netlist.write_text(text)
+        replaced.append(netlist)
+    return replace(system, files=(package, *replaced, top))
 
 
 def simulation_top(design: Design, directory: Path) -> SystemHardware:

@@ -15,6 +15,7 @@ from rfc.toolchain.ghdl import (
     read_entities,
     simulate,
     synthesize_verilog,
+    synthesize_vhdl,
 )
 from rfc.toolchain.yosys import Resources, estimate_resources, module_resources
 
@@ -33,4 +34,5 @@ __all__ = [
     "simulate",
     "start_new_design",
     "synthesize_verilog",
+    "synthesize_vhdl",
 ]

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import sys
+from enum import StrEnum
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -136,6 +137,13 @@ def _bus_width(value: int) -> int:
     return value
 
 
+class LoopbackSimulator(StrEnum):
+    """Which simulator runs a loopback."""
+
+    GHDL = "ghdl"
+    VERILATOR = "verilator"
+
+
 @msg_app.command("loopback")
 def loopback_command(
     type_name: Annotated[str, typer.Argument(help="Message type, e.g. nav_msgs/msg/Odometry.")],
@@ -158,16 +166,31 @@ def loopback_command(
     keep: Annotated[
         Path | None, typer.Option(help="Keep the generated VHDL and simulation files here.")
     ] = None,
+    simulator: Annotated[
+        LoopbackSimulator,
+        typer.Option(
+            "--simulator",
+            help="GHDL (the VHDL) or Verilator (the Verilog, compiled once per converter pair "
+            "and bus width, then cached).",
+        ),
+    ] = LoopbackSimulator.GHDL,
     as_json: Annotated[bool, typer.Option("--json", help="Print one JSON document.")] = False,
 ) -> None:
-    """Round-trip a bag's messages through the generated subscriber and publisher (GHDL).
+    """Round-trip a bag's messages through the generated subscriber and publisher.
 
     Exit status 1 when any message does not come out as rosbags serializes it.
     """
     if not bag.exists():
         raise RfcError(f"bag '{bag}' does not exist", hint="give the path of a .bag, .mcap or .db3")
     report = loopback(
-        type_name, bag, topic=topic, middleware=middleware, width=width, count=count, workdir=keep
+        type_name,
+        bag,
+        topic=topic,
+        middleware=middleware,
+        width=width,
+        count=count,
+        workdir=keep,
+        simulator=simulator.value,
     )
     if as_json:
         print(json.dumps(report.as_json(), indent=2))

@@ -12,7 +12,6 @@ import dataclasses
 import hashlib
 import json
 import os
-import re
 import shutil
 import subprocess
 import tempfile
@@ -21,6 +20,7 @@ from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
 
+from rfc.toolchain.convert import canonical_lines
 from rfc.toolchain.ghdl import synthesize_verilog
 
 _LUTS = ("LUT1", "LUT2", "LUT3", "LUT4", "LUT5", "LUT6")
@@ -95,7 +95,7 @@ def module_resources(verilog: Path, top: str) -> Resources:
         RuntimeError: Yosys is missing or fails.
     """
     digest = hashlib.sha256()
-    for part in (_FLOW, _yosys_version(), top, *_canonical_lines(verilog.read_text())):
+    for part in (_FLOW, _yosys_version(), top, *canonical_lines(verilog.read_text())):
         digest.update(part.encode() + b"\n")
     entry = cache_directory() / f"{digest.hexdigest()}.json"
     if entry.is_file():
@@ -107,23 +107,6 @@ def module_resources(verilog: Path, top: str) -> Resources:
     partial.write_text(json.dumps(dataclasses.asdict(resources)))
     partial.replace(entry)
     return resources
-
-
-_SENSITIVITY = re.compile(r"@\(([^)]*)\)")
-
-
-def _canonical_lines(text: str) -> list[str]:
-    """The lines of MyHDL's Verilog in an order that does not depend on the process.
-
-    MyHDL orders sensitivity lists and reset branches by Python's string hashing, which
-    changes from process to process, so the same design comes in different orders: sorting
-    the names of each sensitivity list and then the lines gives one text per design.
-    """
-
-    def ordered(match: re.Match[str]) -> str:
-        return "@(" + ", ".join(sorted(n.strip() for n in match.group(1).split(","))) + ")"
-
-    return sorted(_SENSITIVITY.sub(ordered, line) for line in text.splitlines())
 
 
 @cache

@@ -1,8 +1,9 @@
-"""rfc sim --netlist: what synthesis makes of the logic gives the bytes the RTL gives.
+"""One logic, three readings: RTL VHDL in GHDL = GHDL's netlist = the Verilog in Verilator.
 
-The same random bag goes through the RTL and through GHDL's synthesized netlist of every
-generated component (structural top level kept); the output bags must be identical, and the
-pass-through system's outputs must be the very bytes rosbags serialized.
+The same random bag goes through the RTL VHDL (``--simulator ghdl``), through GHDL's
+synthesized netlist of every generated component (``--netlist``, structural top level kept) and
+through rfc's Verilog in Verilator (``--simulator verilator``); the output bags must be
+identical, and the pass-through system's outputs must be the very bytes rosbags serialized.
 """
 
 from __future__ import annotations
@@ -20,20 +21,27 @@ ROOT = Path(__file__).resolve().parents[2]
 QUATERNION = "geometry_msgs/msg/Quaternion"
 
 
-def replay_both(spec: Path, bag: Path, folder: Path, *options: str) -> tuple[bytes, bytes]:
-    """The output bag of the RTL and of the netlist, as bytes."""
-    outputs = []
-    for name, extra in (("rtl", ()), ("netlist", ("--netlist",))):
+READINGS = {
+    "rtl": ("--simulator", "ghdl"),
+    "netlist": ("--netlist",),
+    "verilog": ("--simulator", "verilator"),
+}
+
+
+def replay_all(spec: Path, bag: Path, folder: Path, *options: str) -> dict[str, bytes]:
+    """The output bag of each reading of the logic, as bytes."""
+    outputs = {}
+    for name, extra in READINGS.items():
         out = folder / f"{name}.mcap"
         args = ("sim", spec, "--bag", bag, "--out", out, "--json", *options, *extra)
-        result = run_rfc(*args, cwd=ROOT)
+        result = run_rfc(*args, cwd=ROOT, env={"RFC_CACHE_DIR": str(folder / "cache")})
         assert result.returncode == 0, result.stderr
         assert json.loads(result.stdout)["dropped"] == []
-        outputs.append(out.read_bytes())
-    return outputs[0], outputs[1]
+        outputs[name] = out.read_bytes()
+    return outputs
 
 
-def test_the_quaternion_systems_netlist_gives_the_rtls_angles(tmp_path):
+def test_the_quaternion_system_gives_the_same_angles_in_every_reading(tmp_path):
     rng = np.random.default_rng(21)
     types = message_types("ros2")
     quaternions = rng.normal(size=(12, 4))
@@ -51,12 +59,22 @@ def test_the_quaternion_systems_netlist_gives_the_rtls_angles(tmp_path):
     bag = tmp_path / "q.mcap"
     write_bag(bag, types, {"/imu/orientation": QUATERNION}, messages)
     spec = ROOT / "examples/quaternion_to_euler/project.yaml"
-    rtl, netlist = replay_both(spec, bag, tmp_path, "--drain-cycles", "300")
-    assert netlist == rtl
-    assert len(list(read_bag(tmp_path / "netlist.mcap", types))) == 12
+    outputs = replay_all(spec, bag, tmp_path, "--drain-cycles", "300")
+    assert outputs["netlist"] == outputs["rtl"]
+    assert outputs["verilog"] == outputs["rtl"]
+    assert len(list(read_bag(tmp_path / "verilog.mcap", types))) == 12
+    # the compiled model is cached by content: a second run does not build again
+    (model,) = (tmp_path / "cache/verilator").iterdir()
+    built = (model / "quaternion_to_euler_pl").stat().st_mtime_ns
+    args = ("sim", spec, "--bag", bag, "--out", tmp_path / "again.mcap", "--drain-cycles", "300")
+    result = run_rfc(*args, cwd=ROOT, env={"RFC_CACHE_DIR": str(tmp_path / "cache")})
+    assert result.returncode == 0, result.stderr
+    assert (tmp_path / "again.mcap").read_bytes() == outputs["rtl"]  # Verilator by default
+    assert [m.name for m in (tmp_path / "cache/verilator").iterdir()] == [model.name]
+    assert (model / "quaternion_to_euler_pl").stat().st_mtime_ns == built
 
 
-def test_strings_and_byte_sequences_of_every_length_modulo_the_bus_pass_the_netlist(tmp_path):
+def test_strings_and_byte_sequences_of_every_length_modulo_the_bus_pass_every_reading(tmp_path):
     rng = np.random.default_rng(5)
     types = message_types("ros2")
     makers = {"/camera/image": image, "/scan": scan, "/cmd_vel": twist}
@@ -71,10 +89,11 @@ def test_strings_and_byte_sequences_of_every_length_modulo_the_bus_pass_the_netl
         )
     bag = tmp_path / "in.mcap"
     write_bag(bag, types, {t: k for t, (k, _) in TOPICS.items()}, messages)
-    rtl, netlist = replay_both(ROOT / "examples/multi_type/MultiType.yaml", bag, tmp_path)
-    assert netlist == rtl
+    outputs = replay_all(ROOT / "examples/multi_type/MultiType.yaml", bag, tmp_path)
+    assert outputs["netlist"] == outputs["rtl"]
+    assert outputs["verilog"] == outputs["rtl"]
     renamed = {t: o for t, (_, o) in TOPICS.items()}
-    outputs = sorted((m.topic, m.data) for m in read_bag(tmp_path / "netlist.mcap", types))
+    outputs = sorted((m.topic, m.data) for m in read_bag(tmp_path / "verilog.mcap", types))
     assert outputs == sorted((renamed[t], data) for t, _, data in messages)
 
 

@@ -5,7 +5,7 @@ Replays two bags of random orientations (SMALL and LARGE messages, 1.5 µs apart
 message, without process start, spec compilation, logic generation and model compilation (a
 warm-up run fills Verilator's model cache first). Prints a Markdown table.
 
-Usage: python tools/bench_sim.py [--small 20] [--large 220]
+Usage: python tools/bench_sim.py [--small 20] [--large 220] [--simulators ghdl verilator]
 """
 
 from __future__ import annotations
@@ -62,6 +62,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--small", type=int, default=20)
     parser.add_argument("--large", type=int, default=220)
+    parser.add_argument("--simulators", nargs="+", default=["ghdl", "verilator"])
     args = parser.parse_args()
     rows = []
     with tempfile.TemporaryDirectory(prefix="rfc-bench-sim-") as scratch:
@@ -69,7 +70,7 @@ def main() -> None:
         bags = {n: folder / f"q{n}.mcap" for n in (args.small, args.large)}
         for count, bag in bags.items():
             orientations_bag(bag, count)
-        for simulator in ("ghdl", "verilator"):
+        for simulator in args.simulators:
             replay(bags[args.small], folder / "warm.mcap", simulator)  # caches, page cache
             times = {n: replay(bag, folder / f"{n}.mcap", simulator) for n, bag in bags.items()}
             marginal = (times[args.large] - times[args.small]) / (args.large - args.small)

@@ -51,7 +51,7 @@ class Simulator(StrEnum):
     GHDL = "ghdl"
     """The VHDL in GHDL (any logic)."""
     VERILATOR = "verilator"
-    """The Verilog in Verilator (logic without VHDL accelerators); about 100x faster."""
+    """The Verilog in Verilator (logic without VHDL accelerators); about 10x faster."""
 
 
 sim_app = typer.Typer()
@@ -252,10 +252,12 @@ class _Run:
 
     def _simulator(self, top: SimulationTop) -> str:
         """The simulator asked for, else the fastest the logic allows."""
-        verilog = bool(getattr(top, "verilog", ())) and not getattr(top, "vhdl_only", ())
+        verilog = bool(getattr(top, "verilog", ())) and not (
+            getattr(top, "vhdl_only", ()) or getattr(top, "ghdl_verilog", ())
+        )
         if self.simulator is Simulator.VERILATOR and not verilog:
             raise RfcError(
-                "this logic is not all in Verilog (a VHDL accelerator, or a top provider "
+                "this logic is not all in rfc's Verilog (a VHDL accelerator, or a top provider "
                 "without Verilog), so it cannot run in Verilator",
                 hint="use --simulator ghdl",
             )

@@ -12,9 +12,11 @@ import json
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 from rfc.messages.rosbags_adapter import message_types, read_bag, write_bag
 from tests.examples.multi_type.test_system import TOPICS, image, scan, twist
+from tests.lower.system.systems import point_system, point_vhdl, write_spec
 from tests.support.cli import run_rfc
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -105,3 +107,22 @@ def test_netlist_needs_the_ghdl_backend(tmp_path):
     result = run_rfc(*args, "--backend", "myhdl", cwd=ROOT)
     assert result.returncode == 2
     assert "--netlist simulates VHDL netlists" in result.stderr
+
+
+@pytest.mark.parametrize("synthesizable", [True, False], ids=["ghdl-netlist", "stays-vhdl"])
+def test_a_logic_with_a_vhdl_accelerator_is_refused_by_verilator(tmp_path, synthesizable):
+    vhdl = point_vhdl()  # two drivers of out0_x: GHDL's synthesis refuses it, not without them
+    if synthesizable:
+        vhdl = vhdl.replace("  out0_x <= (others => '0');\n", "")
+    spec = write_spec(tmp_path, point_system("VHDL", "pass.vhd", "pass_point"), pass__vhd=vhdl)
+    types = message_types("ros2")
+    point = "geometry_msgs/msg/Point"
+    data = types.serialize(types.build(point, {"x": 1.0, "y": 2.0, "z": 3.0}), point)
+    bag = tmp_path / "p.mcap"
+    write_bag(bag, types, {"/p": point}, [("/p", 1000, data)])
+    args = ("sim", spec, "--bag", bag, "--out", tmp_path / "o.mcap", "--simulator", "verilator")
+    result = run_rfc(*args, cwd=ROOT)
+    assert result.returncode == 1
+    assert "this logic is not all in rfc's Verilog" in result.stderr
+    assert "Traceback" not in result.stderr
+    assert not (tmp_path / "o.mcap").exists()

@@ -238,7 +238,9 @@ def _vhdl(
         )
     entity = EntityDecl(found.name, tuple(expected))
     netlist = synthesized_netlist(tuple(accelerator.sources), found.name, directory)
-    component = Component(entity, tuple(accelerator.sources), verilog=netlist)
+    component = Component(
+        entity, tuple(accelerator.sources), verilog=netlist, verilog_by_ghdl=bool(netlist)
+    )
     return AcceleratorHardware((component,), (("", entity),), pins=_own_pins(ports))
 
 

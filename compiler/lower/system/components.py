@@ -42,12 +42,15 @@ class Component:
         buffers: The FIFOs it holds for a message's strings and sequences.
         verilog: Its Verilog files (none for a VHDL accelerator until GHDL synthesizes it,
             nor for a vendor core).
+        verilog_by_ghdl: Whether `verilog` is GHDL's netlist of VHDL (whose Verilog writer
+            has known bugs: fine for Yosys's estimate, not for simulation).
     """
 
     entity: EntityDecl
     files: tuple[Path, ...] = ()
     buffers: tuple[Buffer, ...] = ()
     verilog: tuple[Path, ...] = ()
+    verilog_by_ghdl: bool = False
 
 
 def _component(entity: EntityDecl, files: Sequence[Path]) -> Component:

@@ -54,6 +54,7 @@ class SystemHardware:
         verilog: Every Verilog file, in compile order, the top level last.
         vhdl_only: The entities that have no Verilog (VHDL accelerators GHDL cannot
             synthesize, vendor cores).
+        ghdl_verilog: The entities whose Verilog is GHDL's netlist (VHDL accelerators).
         bus_width: Bits of the DMA streams.
         hls: The HLS cores it instantiates (their VHDL comes from Vitis HLS, not from rfc).
         multichannel: Whether the DMA must be multichannel (the scheduler preempts).
@@ -67,6 +68,7 @@ class SystemHardware:
     files: tuple[Path, ...]
     verilog: tuple[Path, ...]
     vhdl_only: tuple[str, ...]
+    ghdl_verilog: tuple[str, ...]
     bus_width: int
     hls: tuple[HlsCore, ...]
     multichannel: bool
@@ -213,6 +215,7 @@ def generate_system(
         files=(*files, top_file),
         verilog=(*verilog, top_verilog),
         vhdl_only=(*(c.entity.name for c in components if not c.verilog), *vendor),
+        ghdl_verilog=tuple(c.entity.name for c in components if c.verilog_by_ghdl),
         bus_width=width,
         hls=tuple(h.hls for h in hardware_types.values() if h.hls is not None),
         multichannel=spec is not None and _preemptive(spec),

@@ -43,6 +43,7 @@ def replay_all(spec: Path, bag: Path, folder: Path, *options: str) -> dict[str, 
     return outputs
 
 
+@pytest.mark.slow
 def test_the_quaternion_system_gives_the_same_angles_in_every_reading(tmp_path):
     rng = np.random.default_rng(21)
     types = message_types("ros2")
@@ -76,6 +77,7 @@ def test_the_quaternion_system_gives_the_same_angles_in_every_reading(tmp_path):
     assert (model / "quaternion_to_euler_pl").stat().st_mtime_ns == built
 
 
+@pytest.mark.slow
 def test_strings_and_byte_sequences_of_every_length_modulo_the_bus_pass_every_reading(tmp_path):
     rng = np.random.default_rng(5)
     types = message_types("ros2")

@@ -169,12 +169,14 @@ async def replay_through_logic(dut: object) -> None:
     design = compile_spec(job["spec"])
     queues = QueueConfig(QueuePolicy(job["policy"]), job["depth"])
     runtime = Runtime(DesignPlan(design), queues, screen=job["screen"])
-    replay = _Replay(dut, job, runtime)
-    cocotb.start_soon(Clock(dut.aclk, replay.period_ns, unit="ns").start())
+    cocotb.start_soon(Clock(dut.aclk, 1000.0 / job["clock_mhz"], unit="ns").start())
     dut.aresetn.value = 0
     await ClockCycles(dut.aclk, 4)
     dut.aresetn.value = 1
     await ClockCycles(dut.aclk, 2)
+    # The streams' drivers start after the reset: a synthesized netlist's registers have no
+    # value before it.
+    replay = _Replay(dut, job, runtime)
     cocotb.start_soon(replay.send())
     cocotb.start_soon(replay.receive())
     try:

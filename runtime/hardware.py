@@ -88,8 +88,9 @@ def simulate_with_ghdl(
     stall_cycles: int = DEFAULT_STALL_CYCLES,
     seed: int = 1,
     progress: Callable[[int], None] | None = None,
+    simulator: str = "ghdl",
 ) -> SimulationRun:
-    """Replay `bag` through the design's logic in GHDL with the runtime in cocotb.
+    """Replay `bag` through the design's logic in GHDL (or Verilator) with the runtime in cocotb.
 
     Args:
         design: The holistic model (its spec file is compiled again in the simulator).
@@ -105,6 +106,7 @@ def simulate_with_ghdl(
             the logic counts as stalled (`rfc.runtime.stall`).
         seed: Seed of the random idle and backpressure.
         progress: Called now and then with the number of messages offered so far.
+        simulator: ``ghdl`` (the VHDL) or ``verilator`` (the top's ``verilog`` files).
 
     Raises:
         CosimError: The simulation failed (a bug in rfc or in the logic).
@@ -134,12 +136,13 @@ def simulate_with_ghdl(
     def simulate() -> None:
         try:
             run_cocotb(
-                top.sources,
+                getattr(top, "verilog", ()) if simulator == "verilator" else top.sources,
                 top.top,
                 "rfc.runtime.cosim",
                 workdir / "sim",
                 env={"RFC_SIM_JOB": str(job_file)},
                 seed=seed,
+                simulator=simulator,
             )
         except BaseException as exc:  # handed to the caller's thread below
             failure.append(exc)

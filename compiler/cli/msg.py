@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import sys
+from enum import StrEnum
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -142,6 +143,13 @@ def _bus_width(value: int) -> int:
     return value
 
 
+class LoopbackSimulator(StrEnum):
+    """Which simulator runs a loopback."""
+
+    GHDL = "ghdl"
+    VERILATOR = "verilator"
+
+
 @msg_app.command("loopback")
 def loopback_command(
     type_name: Annotated[str, typer.Argument(help="Message type, e.g. nav_msgs/msg/Odometry.")],
@@ -173,9 +181,17 @@ def loopback_command(
         list[str] | None,
         typer.Option(help="These fields do not; they come out at their defaults."),
     ] = None,
+    simulator: Annotated[
+        LoopbackSimulator,
+        typer.Option(
+            "--simulator",
+            help="GHDL (the VHDL) or Verilator (the Verilog, compiled once per converter pair "
+            "and bus width, then cached).",
+        ),
+    ] = LoopbackSimulator.GHDL,
     as_json: Annotated[bool, typer.Option("--json", help="Print one JSON document.")] = False,
 ) -> None:
-    """Round-trip a bag's messages through the generated subscriber and publisher (GHDL).
+    """Round-trip a bag's messages through the generated subscriber and publisher.
 
     Exit status 1 when any message does not come out as rosbags serializes it (with the
     fields left out by --include/--exclude at their defaults).
@@ -190,6 +206,7 @@ def loopback_command(
         "msg_paths": tuple(msg_path or ()),
         "include": tuple(include or ()),
         "exclude": tuple(exclude or ()),
+        "simulator": simulator.value,
     }
     if keep is None:
         report = loopback(type_name, bag, **options)

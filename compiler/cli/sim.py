@@ -46,7 +46,18 @@ class Backend(StrEnum):
     """MyHDL's simulator, in process (logic whose top provider gives a MyHDL design)."""
 
 
+class Simulator(StrEnum):
+    """Which HDL simulator runs the logic with ``--backend ghdl``."""
+
+    GHDL = "ghdl"
+    """The VHDL in GHDL (any logic)."""
+    VERILATOR = "verilator"
+    """The Verilog in Verilator (logic without VHDL accelerators); about 10x faster."""
+
+
 sim_app = typer.Typer()
+#: The top provider of ``--netlist``: the logic as GHDL synthesizes it.
+NETLIST_TOP_PROVIDER = "rfc.lower.hardware:netlist_top"
 
 
 @sim_app.command("sim")
@@ -113,6 +124,22 @@ def sim(
             help="Replay only these subscribed topics (repeatable, or comma-separated).",
         ),
     ] = None,
+    simulator: Annotated[
+        Simulator | None,
+        typer.Option(
+            "--simulator",
+            help="Simulator of the logic with --backend ghdl: GHDL (the VHDL) or Verilator (the "
+            "Verilog); by default Verilator when the whole logic is in Verilog.",
+        ),
+    ] = None,
+    netlist: Annotated[
+        bool,
+        typer.Option(
+            "--netlist",
+            help="Simulate GHDL's synthesized netlist of each generated component (the "
+            "structural top level kept): what synthesis makes of the logic.",
+        ),
+    ] = False,
 ) -> None:
     """Replay a bag through the whole system and write each publisher's messages to OUT."""
     from rfc.driver import compile_spec
@@ -143,8 +170,24 @@ def sim(
     queues = QueueConfig(queue, depth)
     # finds every ROS-SW function before anything runs
     runtime = Runtime(plan, queues, screen=not send_malformed)
+    if netlist:
+        if backend is Backend.MYHDL:
+            raise typer.BadParameter("--netlist simulates VHDL netlists: use --backend ghdl")
+        if simulator is Simulator.VERILATOR:
+            raise typer.BadParameter("--netlist simulates VHDL netlists: use --simulator ghdl")
+        simulator = Simulator.GHDL
+        top_provider = top_provider or NETLIST_TOP_PROVIDER
     run = _Run(
-        bag, types, topic_names, runtime, backend, drain_cycles, stall_cycles, seed, top_provider
+        bag,
+        types,
+        topic_names,
+        runtime,
+        backend,
+        drain_cycles,
+        stall_cycles,
+        seed,
+        top_provider,
+        simulator,
     )
     console = Console(stderr=True, highlight=False)
     with Progress(
@@ -183,6 +226,7 @@ class _Run:
     stall_cycles: int
     seed: int
     top_provider: str | None
+    simulator: Simulator | None = None
 
     def total(self) -> int:
         from rfc.messages.rosbags_adapter import bag_topics
@@ -239,8 +283,24 @@ class _Run:
             stall_cycles=self.stall_cycles,
             seed=self.seed,
             progress=progress,
+            simulator=self._simulator(top),
         )
         return run.published, run.account
+
+    def _simulator(self, top: SimulationTop) -> str:
+        """The simulator asked for, else the fastest the logic allows."""
+        verilog = bool(getattr(top, "verilog", ())) and not (
+            getattr(top, "vhdl_only", ()) or getattr(top, "ghdl_verilog", ())
+        )
+        if self.simulator is Simulator.VERILATOR and not verilog:
+            raise RfcError(
+                "this logic is not all in rfc's Verilog (a VHDL accelerator, or a top provider "
+                "without Verilog), so it cannot run in Verilator",
+                hint="use --simulator ghdl",
+            )
+        if self.simulator is None:
+            return "verilator" if verilog else "ghdl"
+        return self.simulator.value
 
     def _myhdl(self, top: SimulationTop, progress: Callable[[int], None]) -> list[Published]:
         from rfc.runtime.myhdl_sim import simulate_with_myhdl

@@ -1,7 +1,8 @@
-"""The hardware lowering: the logic's VHDL, its file list, Vivado and Vitis HLS scripts, build.sh.
+"""The hardware lowering: the logic's VHDL and Verilog, Vivado and Vitis HLS scripts, build.sh.
 
 `rfc.lower.system.generate_system` generates the logic into a scratch folder; this lowering
-turns its files into artifacts under ``hw/`` (``hw/files.txt`` lists them in compile order),
+turns its files into artifacts under ``hw/`` (``hw/files.txt`` lists them in compile order)
+and ``hw/verilog/`` (the same modules in Verilog, with their own ``files.txt``),
 adds the Vivado project values and block design derived from the same netlist
 (`rfc.lower.vivado`), one Vitis HLS run per HLS accelerator, and the static ``build.sh``.
 `simulation_top` is the top provider of ``rfc sim``: the same logic, generated for GHDL.
@@ -11,6 +12,7 @@ from __future__ import annotations
 
 import tempfile
 from collections.abc import Iterable
+from dataclasses import replace
 from importlib import resources
 from pathlib import Path
 
@@ -20,11 +22,19 @@ from rfc.lower.artifacts import Artifact, BuildOptions, ReportSection
 from rfc.lower.block_design import block_design, tcl_list, tcl_word
 from rfc.lower.system.accelerators import HlsCore
 from rfc.lower.system.generate import SystemHardware, generate_system
-from rfc.lower.system.measures import buffers_section, latency_section, resources_section
+from rfc.lower.system.measures import (
+    buffers_section,
+    latency_section,
+    resources_section,
+    verilog_section,
+)
 from rfc.lower.vivado import VivadoProject, vivado_artifacts
+from rfc.toolchain import GhdlError, synthesize_vhdl
 
 #: Where the generated VHDL goes in the build directory.
 HW = "hw"
+#: Where the same logic goes in Verilog.
+VERILOG = f"{HW}/verilog"
 
 
 def hardware(design: Design, options: BuildOptions) -> Iterable[Artifact | ReportSection]:
@@ -36,6 +46,8 @@ def hardware(design: Design, options: BuildOptions) -> Iterable[Artifact | Repor
     with tempfile.TemporaryDirectory(prefix="rfc-hw-") as scratch:
         system = generate_system(design, Path(scratch))
         yield from _vhdl(system)
+        yield from _verilog(system)
+        yield verilog_section(design, system)
         yield latency_section(design, system)
         if system.buffers:
             yield buffers_section(system)
@@ -70,6 +82,15 @@ def _vhdl(system: SystemHardware) -> Iterable[Artifact]:
     yield Artifact(f"{HW}/files.txt", "file list", "\n".join(names) + "\n")
 
 
+def _verilog(system: SystemHardware) -> Iterable[Artifact]:
+    """``hw/verilog/``: the same modules in Verilog, for Yosys and Verilator."""
+    names = [f.name for f in system.verilog]
+    for path in system.verilog:
+        kind = "top-level Verilog" if path.stem == system.top else "Verilog"
+        yield Artifact(f"{VERILOG}/{path.name}", kind, path.read_text(encoding="utf-8"))
+    yield Artifact(f"{VERILOG}/files.txt", "file list", "\n".join(names) + "\n")
+
+
 def _hls_run(core: HlsCore, design: Design) -> Iterable[Artifact]:
     folder = f"hls/{core.accelerator}"
     static = resources.files("rfc.lib").joinpath("tcl/hls/run.tcl").read_text()
@@ -88,6 +109,35 @@ def _hls_run(core: HlsCore, design: Design) -> Iterable[Artifact]:
         + [f"set hls({key}) {value}" for key, value in values]
     )
     yield Artifact(f"{folder}/values.tcl", "HLS tcl", text + "\n")
+
+
+def netlist_top(design: Design, directory: Path) -> SystemHardware:
+    """The logic of `design` for ``rfc sim --netlist``: what synthesis makes of it.
+
+    Each generated component is replaced by GHDL's synthesized netlist of it; the structural
+    top level and VHDL accelerators stay as they are.
+
+    Raises:
+        RfcError: The logic holds an HLS core, or GHDL cannot synthesize a component.
+    """
+    system = simulation_top(design, directory)
+    package, *files, top = system.files
+    netlists = directory / "netlist"
+    netlists.mkdir(exist_ok=True)
+    replaced = []
+    for path in files:
+        if path.parent != directory:  # a VHDL accelerator's own source
+            replaced.append(path)
+            continue
+        try:
+            with tempfile.TemporaryDirectory(prefix="rfc-netlist-") as scratch:
+                text = synthesize_vhdl([package, path], path.stem, Path(scratch))
+        except GhdlError as exc:
+            raise RfcError(f"GHDL could not synthesize {path.stem} for --netlist:\n{exc}") from None
+        netlist = netlists / path.name
+        netlist.write_text(text)
+        replaced.append(netlist)
+    return replace(system, files=(package, *replaced, top))
 
 
 def simulation_top(design: Design, directory: Path) -> SystemHardware:

@@ -1,10 +1,12 @@
-"""A small builder of structural VHDL: entities wired together by typed, width-checked nets.
+"""A small builder of structural HDL: entities wired together by typed, width-checked nets.
 
 The system's top level only instantiates generated entities (manager, converters, scheduler,
 accelerator wrappers) and connects their ports, so it is built as data — ports, signals,
 instances, assignments — and checked before it is rendered: every input of every instance is
 driven exactly once, widths and kinds (``std_logic`` vs ``std_logic_vector``) agree, and no
-signal has two drivers. Rendering is VHDL-2008 with direct entity instantiation.
+signal has two drivers. The same netlist renders as VHDL-2008 with direct entity instantiation
+(`Netlist.render`) and as Verilog-2001 with the same module, port and signal names
+(`Netlist.render_verilog`).
 """
 
 from __future__ import annotations
@@ -15,6 +17,7 @@ from dataclasses import dataclass, field
 from enum import StrEnum
 
 _IDENTIFIER = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
+_INVERSION = re.compile(r"^not (\w+)$")
 
 
 class Mode(StrEnum):
@@ -82,6 +85,19 @@ class Net:
     wire: bool
     signal: str | None = None
     span: tuple[int, int] = (0, 0)
+
+    @property
+    def verilog(self) -> str:
+        """The same value as a Verilog expression."""
+        if self.signal is None:  # a constant: '1' or "0101"
+            return f"{self.bits}'b{self.text.strip(chr(39) + chr(34))}"
+        name = _verilog_identifier(self.signal)
+        if self.text.startswith("not "):
+            return f"~{name}"
+        if self.text == self.signal:
+            return name
+        high, low = self.span
+        return f"{name}[{low}]" if self.wire else f"{name}[{high}:{low}]"
 
     def bit(self, index: int) -> Net:
         """One bit of a vector, as a ``std_logic``."""
@@ -188,12 +204,21 @@ class Netlist:
     def assign(self, target: Net, source: Net | str) -> None:
         """A concurrent assignment ``target <= source``.
 
-        `source` may also be expression text of the target's type, such as ``not aresetn``.
+        `source` may also be the inversion of a declared ``std_logic``, such as
+        ``not aresetn``.
         """
-        if isinstance(source, Net) and (source.bits != target.bits or source.wire != target.wire):
+        if isinstance(source, str):
+            source = self._inversion(source)
+        if source.bits != target.bits or source.wire != target.wire:
             raise NetlistError(f"{target.text} <= {source.text}: widths or kinds differ")
-        value = source if isinstance(source, Net) else Net(source, target.bits, target.wire)
-        self._assignments.append((target, value))
+        self._assignments.append((target, source))
+
+    def _inversion(self, text: str) -> Net:
+        match = _INVERSION.match(text)
+        if match is None or self._signals.get(match.group(1)) != (1, True):
+            raise NetlistError(f"'{text}' is not the inversion of a std_logic signal")
+        name = match.group(1)
+        return Net(text, 1, True, name, (0, 0))
 
     def instances(self) -> Iterator[tuple[str, EntityDecl, Mapping[str, Net | None]]]:
         """Each instance's label, entity and port connections, in the order they were added."""
@@ -273,6 +298,66 @@ class Netlist:
             lines.append("    );")
         lines += ["end architecture structure;", ""]
         return "\n".join(lines)
+
+    def render_verilog(self) -> str:
+        """The Verilog text (checks first): the same module, ports, wires and instances."""
+        self.check()
+        lines = [f"// {line}" for line in self.comment.splitlines()]
+        ports = {p.name for p in self.entity.ports}
+        lines += ["`default_nettype none", "", f"module {_verilog_identifier(self.entity.name)} ("]
+        lines.append(
+            ",\n".join(
+                f"    {p.mode.value}put wire{_range(p.bits, p.wire)} {_verilog_identifier(p.name)}"
+                for p in self.entity.ports
+            )
+        )
+        lines.append(");")
+        for name, (bits, wire) in self._signals.items():
+            if name not in ports:
+                lines.append(f"  wire{_range(bits, wire)} {_verilog_identifier(name)};")
+        for target, source in self._assignments:
+            lines.append(f"  assign {target.verilog} = {source.verilog};")
+        for instance in self._instances:
+            lines += ["", f"  {_verilog_identifier(instance.entity.name)}"]
+            if instance.generics:
+                maps = ", ".join(f".{k}({v})" for k, v in instance.generics.items())
+                lines.append(f"    #({maps})")
+            lines.append(f"    {_verilog_identifier(instance.label)} (")
+            maps = [
+                f"      .{_verilog_identifier(name)}({'' if net is None else net.verilog})"
+                for name, net in instance.connections.items()
+            ]
+            lines.append(",\n".join(maps))
+            lines.append("    );")
+        lines += ["endmodule", "", "`default_nettype wire", ""]
+        return "\n".join(lines)
+
+
+def _range(bits: int, wire: bool) -> str:
+    return "" if wire else f" [{bits - 1}:0]"
+
+
+#: Verilog-2005 keywords, which are legal VHDL identifiers but must be escaped in Verilog.
+_VERILOG_KEYWORDS = frozenset(
+    re.findall(
+        r"\w+",
+        """always and assign automatic begin buf bufif0 bufif1 case casex casez cell cmos config
+    deassign default defparam design disable edge else end endcase endconfig endfunction
+    endgenerate endmodule endprimitive endspecify endtable endtask event for force forever fork
+    function generate genvar highz0 highz1 if ifnone incdir include initial inout input instance
+    integer join large liblist library localparam macromodule medium module nand negedge nmos nor
+    noshowcancelled not notif0 notif1 or output parameter pmos posedge primitive pull0 pull1
+    pulldown pullup pulsestyle_ondetect pulsestyle_onevent rcmos real realtime reg release repeat
+    rnmos rpmos rtran rtranif0 rtranif1 scalared showcancelled signed small specify specparam
+    strong0 strong1 supply0 supply1 table task time tran tranif0 tranif1 tri tri0 tri1 triand
+    trior trireg unsigned use uwire vectored wait wand weak0 weak1 while wire wor xnor xor""",
+    )
+)
+
+
+def _verilog_identifier(name: str) -> str:
+    """`name` in Verilog: escaped (the same name to every tool) when it is a keyword."""
+    return f"\\{name} " if name in _VERILOG_KEYWORDS else name
 
 
 def _port_clause(ports: Iterable[PortDecl]) -> list[str]:

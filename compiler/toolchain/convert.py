@@ -56,6 +56,7 @@ def convert_myhdl(
     """
     directory.mkdir(parents=True, exist_ok=True)
     banner = "".join(f"-- {line}\n" for line in header.splitlines())
+    marks = _user_marks(instance)
     with _CONVERTER_LOCK:
         instance.convert(
             hdl="VHDL",
@@ -69,6 +70,8 @@ def convert_myhdl(
         files = [directory / MYHDL_PACKAGE, directory / f"{name}.vhd"]
         _drop_undeclared_port_copies(files[1])
         if verilog:
+            for signal, driven, read in marks:  # the VHDL conversion cleared them
+                signal._driven, signal._read = driven, read
             instance.convert(
                 hdl="Verilog",
                 path=str(directory),
@@ -79,7 +82,43 @@ def convert_myhdl(
                 header=banner.replace("--", "//"),
             )
             files.append(directory / f"{name}.v")
+            _indexed_part_selects(files[-1])
     return files
+
+
+_LOOP_SLICE = re.compile(r"\[\(\((\w+) \+ 1\) \* (\d+)\)-1:\(\1 \* \2\)\]")
+
+
+def _indexed_part_selects(path: Path) -> None:
+    """Write MyHDL's slices at a loop index, ``x[((i + 1) * 8)-1:(i * 8)]``, as ``x[(i * 8) +: 8]``.
+
+    Verilog-2001 wants constant bounds in a part select; Yosys reads MyHDL's form anyway, but
+    Verilator refuses it. The indexed part select means the same bits.
+    """
+    text = path.read_text()
+    fixed = _LOOP_SLICE.sub(lambda m: f"[({m.group(1)} * {m.group(2)}) +: {m.group(2)}]", text)
+    if fixed != text:
+        path.write_text(fixed)
+
+
+def _user_marks(instance: Any) -> list[tuple[Any, Any, bool]]:
+    """Every signal of the design with the `driven`/`read` marks set when it was elaborated.
+
+    A block given as user-defined HDL (a memory template) marks the signals its template
+    drives and reads. MyHDL clears those marks at the end of each conversion, so a second
+    conversion of the same instance would take a driven output for an undriven wire (and tie
+    it to 0): they are put back before it.
+    """
+    marks = []
+    blocks = [instance]
+    while blocks:
+        block = blocks.pop()
+        signals = list(getattr(block, "sigdict", {}).values())
+        for memory in getattr(block, "memdict", {}).values():
+            signals += list(getattr(memory, "mem", memory))
+        marks += [(s, s._driven, s._read) for s in signals if hasattr(s, "_driven")]
+        blocks += [sub for sub in getattr(block, "subs", ()) if hasattr(sub, "subs")]
+    return marks
 
 
 _PORT_COPY = re.compile(r"^(\w+)_num <= (?:unsigned|signed)\(\1\);\n", re.M)
@@ -97,3 +136,20 @@ def _drop_undeclared_port_copies(path: Path) -> None:
     kept = _PORT_COPY.sub(lambda m: m.group(0) if f"{m.group(1)}_num" in declared else "", text)
     if kept != text:
         path.write_text(kept)
+
+
+_SENSITIVITY = re.compile(r"@\(([^)]*)\)")
+
+
+def canonical_lines(text: str) -> list[str]:
+    """The lines of MyHDL's Verilog in an order that does not depend on the process: a key.
+
+    MyHDL orders sensitivity lists and reset branches by Python's string hashing, which
+    changes from process to process, so the same design comes in different orders: sorting
+    the names of each sensitivity list and then the lines gives one text per design.
+    """
+
+    def ordered(match: re.Match[str]) -> str:
+        return "@(" + ", ".join(sorted(n.strip() for n in match.group(1).split(","))) + ")"
+
+    return sorted(_SENSITIVITY.sub(ordered, line) for line in text.splitlines())

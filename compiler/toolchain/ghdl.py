@@ -1,4 +1,4 @@
-"""GHDL: analysis and elaboration checks, and synthesis of VHDL to Verilog for Yosys."""
+"""GHDL: analysis and elaboration checks, and synthesis of VHDL to netlists (VHDL, Verilog)."""
 
 from __future__ import annotations
 
@@ -53,9 +53,24 @@ def synthesize_verilog(files: Sequence[Path], top: str, workdir: Path) -> str:
     Raises:
         GhdlError: GHDL cannot synthesize the design.
     """
+    return _synthesize(files, top, workdir, "verilog")
+
+
+def synthesize_vhdl(files: Sequence[Path], top: str, workdir: Path) -> str:
+    """Synthesize a VHDL design with `ghdl --synth` and return the netlist as VHDL text.
+
+    The netlist keeps the entity's name and ports, so it replaces the RTL in a simulation.
+
+    Raises:
+        GhdlError: GHDL cannot synthesize the design.
+    """
+    return _synthesize(files, top, workdir, "vhdl")
+
+
+def _synthesize(files: Sequence[Path], top: str, workdir: Path, language: str) -> str:
     options = [f"--std={STANDARD}", "-fsynopsys", f"--workdir={workdir}"]
     return _ghdl(
-        ["--synth", *options, "--out=verilog", *map(str, _vhdl(files)), "-e", top], workdir
+        ["--synth", *options, f"--out={language}", *map(str, _vhdl(files)), "-e", top], workdir
     )
 
 

@@ -1,15 +1,26 @@
-"""Resource estimates without vendor tools: Yosys `synth_xilinx` for the 7-series (xc7z020)."""
+"""Resource estimates without vendor tools: Yosys `synth_xilinx` for the 7-series (xc7z020).
+
+`module_resources` maps one module of rfc's own Verilog out of context, cached by the content
+of its file (a system's estimate sums its modules, so a rebuild or a sibling system that shares
+the accelerator maps only what changed); `estimate_resources` goes through GHDL's synthesis
+for designs that exist only in VHDL (a scheduler or converter on its own).
+"""
 
 from __future__ import annotations
 
+import dataclasses
+import hashlib
 import json
+import os
 import shutil
 import subprocess
 import tempfile
 from collections.abc import Sequence
 from dataclasses import dataclass
+from functools import cache
 from pathlib import Path
 
+from rfc.toolchain.convert import canonical_lines
 from rfc.toolchain.ghdl import synthesize_verilog
 
 _LUTS = ("LUT1", "LUT2", "LUT3", "LUT4", "LUT5", "LUT6")
@@ -37,6 +48,19 @@ class Resources:
     bram: int = 0
     dsp: int = 0
 
+    def __add__(self, other: Resources) -> Resources:
+        """The cells of two designs side by side."""
+        return Resources(
+            *(
+                a + b
+                for a, b in zip(dataclasses.astuple(self), dataclasses.astuple(other), strict=True)
+            )
+        )
+
+    def __mul__(self, copies: int) -> Resources:
+        """The cells of `copies` instances of a design."""
+        return Resources(*(copies * a for a in dataclasses.astuple(self)))
+
 
 def estimate_resources(files: Sequence[Path], top: str) -> Resources:
     """Synthesize VHDL (`ghdl --synth`) then map it with Yosys and count the cells.
@@ -52,15 +76,58 @@ def estimate_resources(files: Sequence[Path], top: str) -> Resources:
         return resources_of_verilog(verilog, top, work)
 
 
-def resources_of_verilog(verilog: Path, top: str, workdir: Path) -> Resources:
+#: Changes whenever the way a module is mapped changes, so old cache entries are not reused.
+_FLOW = "synth_xilinx -family xc7 -noiopad, out of context, v1"
+
+
+def cache_directory() -> Path:
+    """Where module figures are kept: ``$RFC_CACHE_DIR/verilog`` or ``~/.cache/rfc/verilog``."""
+    root = os.environ.get("RFC_CACHE_DIR") or Path.home() / ".cache" / "rfc"
+    return Path(root) / "verilog"
+
+
+def module_resources(verilog: Path, top: str) -> Resources:
+    """Map one Verilog file to the 7-series and count the cells of its module `top`.
+
+    The figures are cached by the file's content, the module and Yosys's version.
+
+    Raises:
+        RuntimeError: Yosys is missing or fails.
+    """
+    digest = hashlib.sha256()
+    for part in (_FLOW, _yosys_version(), top, *canonical_lines(verilog.read_text())):
+        digest.update(part.encode() + b"\n")
+    entry = cache_directory() / f"{digest.hexdigest()}.json"
+    if entry.is_file():
+        return Resources(**json.loads(entry.read_text()))
+    with tempfile.TemporaryDirectory(prefix="rfc-synth-") as scratch:
+        resources = resources_of_verilog(verilog, top, Path(scratch))
+    entry.parent.mkdir(parents=True, exist_ok=True)
+    partial = entry.with_suffix(f".{os.getpid()}.tmp")
+    partial.write_text(json.dumps(dataclasses.asdict(resources)))
+    partial.replace(entry)
+    return resources
+
+
+@cache
+def _yosys_version() -> str:
+    executable = shutil.which("yosys")
+    if executable is None:
+        raise RuntimeError("yosys is not installed; run tools/setup.sh")
+    result = subprocess.run([executable, "-V"], capture_output=True, text=True, check=False)
+    return result.stdout.strip()
+
+
+def resources_of_verilog(verilog: Path | Sequence[Path], top: str, workdir: Path) -> Resources:
     """Map a Verilog design with `synth_xilinx -family xc7` (no I/O buffers) and count cells."""
     executable = shutil.which("yosys")
     if executable is None:
         raise RuntimeError("yosys is not installed; run tools/setup.sh")
     report = workdir / "stat.json"
+    files = [verilog] if isinstance(verilog, Path) else list(verilog)
     script = (
-        f"read_verilog {verilog}; synth_xilinx -family xc7 -noiopad -top {top}; "
-        f"tee -q -o {report} stat -json"
+        f"read_verilog {' '.join(str(f) for f in files)}; "
+        f"synth_xilinx -family xc7 -noiopad -top {top}; tee -q -o {report} stat -json"
     )
     result = subprocess.run(
         [executable, "-q", "-p", script], capture_output=True, text=True, check=False

@@ -39,8 +39,10 @@ from rfc.messages.rosbags_adapter import (
 from rfc.messages.selection import select
 from rfc.messages.values import message_to_values, values_to_message
 from rfc.toolchain import GhdlError, convert_myhdl, simulate
+from rfc.toolchain.verilator import VerilatorError, run_testbench
 
 TESTBENCH = Path(__file__).parent / "hdl" / "loopback_tb.vhd"
+VERILOG_TESTBENCH = Path(__file__).parent / "hdl" / "loopback_tb.v"
 
 
 @dataclass(frozen=True)
@@ -113,6 +115,7 @@ def loopback(
     msg_paths: Sequence[Path] = (),
     include: Sequence[str] = (),
     exclude: Sequence[str] = (),
+    simulator: str = "ghdl",
 ) -> LoopbackReport:
     """Stream the bag's messages of `type_name` through a subscriber→publisher loopback.
 
@@ -129,6 +132,7 @@ def loopback(
         include: Only these fields go through the accelerator side (dotted paths).
         exclude: These fields do not; the publisher sends their defaults, and the expected
             frames have them too.
+        simulator: ``ghdl`` or ``verilator``.
 
     Returns:
         One result per message.
@@ -151,10 +155,10 @@ def loopback(
     longest_frame = max(len(m.data) for m in messages)
     converters = plan(layout, width, fitted_limits(layout, values, longest_frame))
     if workdir is not None:
-        report = _run(converters, types, messages, workdir)
+        report = _run(converters, types, messages, workdir, simulator)
     else:
         with tempfile.TemporaryDirectory(prefix="rfc-loopback-") as scratch:
-            report = _run(converters, types, messages, Path(scratch))
+            report = _run(converters, types, messages, Path(scratch), simulator)
     return replace(report, skipped=skipped_topics(bag))
 
 
@@ -261,9 +265,9 @@ class FrameTiming:
 
 
 def run_frames(
-    converters: Plan, frames: Sequence[bytes], workdir: Path
+    converters: Plan, frames: Sequence[bytes], workdir: Path, simulator: str = "ghdl"
 ) -> list[tuple[bytes, FrameTiming]]:
-    """Send frames through the plan's loopback in GHDL, one in flight at a time.
+    """Send frames through the plan's loopback in GHDL or Verilator, one in flight at a time.
 
     The source sends every beat as soon as the subscriber takes it and the sink never stalls,
     so the timings are the converters' own.
@@ -272,6 +276,8 @@ def run_frames(
         converters: The plan of both converters.
         frames: Frames for the subscriber.
         workdir: The generated HDL and the simulation's files go here.
+        simulator: ``ghdl`` (the VHDL and loopback_tb.vhd) or ``verilator`` (the Verilog and
+            loopback_tb.v, the same events on the same cycles).
 
     Returns:
         What the publisher sent for each frame, with its timing, in order; shorter than
@@ -288,27 +294,41 @@ def run_frames(
         warnings.simplefilter("ignore", ToVerilogWarning)
         ports = loopback_ports(width)
         top = top_block(LOOPBACK, [p.name for p in ports], rfc_loopback, plan=converters)
-        files = convert_myhdl(top(**port_signals(ports)), LOOPBACK, workdir, verilog=False)
+        verilog = simulator == "verilator"
+        files = convert_myhdl(top(**port_signals(ports)), LOOPBACK, workdir, verilog=verilog)
     source = workdir / "frames.txt"
     source.write_text("".join(_beats(frame, width) for frame in frames))
     events = workdir / "events.txt"
     try:
-        simulate(
-            [*files, TESTBENCH],
-            "rfc_loopback_tb",
-            workdir / "work",
-            {"WIDTH": width, "INPUT_FILE": source, "OUTPUT_FILE": events},
-        )
-    except GhdlError as error:
+        if verilog:
+            run_testbench(
+                [files[-1], VERILOG_TESTBENCH],
+                "rfc_loopback_tb",
+                {"WIDTH": width},
+                {"input": str(source), "output": str(events)},
+                workdir / "verilator",
+            )
+        else:
+            simulate(
+                [*files, TESTBENCH],
+                "rfc_loopback_tb",
+                workdir / "work",
+                {"WIDTH": width, "INPUT_FILE": source, "OUTPUT_FILE": events},
+            )
+    except (GhdlError, VerilatorError) as error:
         raise RfcError(f"the loopback simulation failed: {error}") from None
     beats_in = [-(-len(frame) // width) for frame in frames]
     return list(_outputs(events, width, beats_in))
 
 
 def _run(
-    converters: Plan, types: MessageTypes, messages: list[BagMessage], workdir: Path
+    converters: Plan,
+    types: MessageTypes,
+    messages: list[BagMessage],
+    workdir: Path,
+    simulator: str,
 ) -> LoopbackReport:
-    outputs = run_frames(converters, [m.data for m in messages], workdir)
+    outputs = run_frames(converters, [m.data for m in messages], workdir, simulator)
     canonical = converters.layout.type_name
     results = []
     layout = converters.layout

@@ -70,6 +70,8 @@ def rfc_publisher(plan: Plan, **ports: Any) -> Any:
     """The publisher for `plan`; `ports` holds one signal per name of `publisher_ports`."""
     t = tables(plan)
     width = plan.width
+    # A pad is at most 7 bytes: compare it with a constant its 3 bits hold (8 would read as 0).
+    pad_cap = min(width, 7)
     clk, rst = ports["clk"], ports["rst"]
     msg_valid, msg_ready = ports["msg_valid"], ports["msg_ready"]
     pc_bits = max(1, (len(plan.steps) - 1).bit_length())
@@ -191,7 +193,7 @@ def rfc_publisher(plan: Plan, **ports: Any) -> Any:
             if kind == Kind.RECORD:
                 if chunk == 0 and pad != 0:
                     step = int(pad)
-                    if pad > width:
+                    if pad > pad_cap:
                         step = width
                 elif chunk == chunks - 1:
                     step = last_size
@@ -219,7 +221,7 @@ def rfc_publisher(plan: Plan, **ports: Any) -> Any:
                 elif (gap & element) != 0 and piece == 0:
                     pad[:] = gap & element
                     step = int(pad)
-                    if pad > width:
+                    if pad > pad_cap:
                         step = width
                     if room:
                         give.next = step

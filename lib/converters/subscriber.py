@@ -59,6 +59,8 @@ def rfc_subscriber(plan: Plan, **ports: Any) -> Any:
     """The subscriber for `plan`; `ports` holds one signal per name of `subscriber_ports`."""
     t = tables(plan)
     width = plan.width
+    # A pad is at most 7 bytes: compare it with a constant its 3 bits hold (8 would read as 0).
+    pad_cap = min(width, 7)
     clk, rst = ports["clk"], ports["rst"]
     msg_valid, msg_ready, msg_error = ports["msg_valid"], ports["msg_ready"], ports["msg_error"]
     error_count, error_reason = ports["error_count"], ports["error_reason"]
@@ -217,7 +219,7 @@ def rfc_subscriber(plan: Plan, **ports: Any) -> Any:
         if kind == Kind.RECORD:
             if chunk == 0 and pad != 0:
                 step = int(pad)
-                if pad > width:
+                if pad > pad_cap:
                     step = width
             elif chunk == chunks - 1:
                 step = last_size
@@ -263,7 +265,7 @@ def rfc_subscriber(plan: Plan, **ports: Any) -> Any:
             elif (gap & element) != 0 and piece == 0:
                 pad[:] = gap & element
                 step = int(pad)
-                if pad > width:
+                if pad > pad_cap:
                     step = width
                 if abort or avail >= step:
                     if not abort:
@@ -394,7 +396,7 @@ def rfc_subscriber(plan: Plan, **ports: Any) -> Any:
     allowed = 3 if cdr else 0
 
     @always_comb
-    def verdict() -> None:
+    def cdr_verdict() -> None:
         trailing = trail > (gap & allowed)
         failed.next = abort or trailing or header != CDR_ENCAPSULATION
         if abort:
@@ -405,6 +407,12 @@ def rfc_subscriber(plan: Plan, **ports: Any) -> Any:
             error_reason.next = TRAILING
         else:
             error_reason.next = 0
+
+    @always_comb
+    def ros1_verdict() -> None:  # no encapsulation header to check (nor a constant to compare)
+        failed.next = abort or trail != 0
+
+    verdict = cdr_verdict if cdr else ros1_verdict
 
     @always_comb
     def message_handshake() -> None:

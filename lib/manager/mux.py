@@ -193,7 +193,9 @@ def chunk_mux(
                 if offered == index:
                     word[64:32] = s_length[(index + 1) * 32 : index * 32]
             header.next = word
-            in_progress.next[offered] = True
+            for index in range(n):  # constant bit indices: no memory for synthesis to infer
+                if offered == index:
+                    in_progress.next[index] = True
             state.next = t_state.HEADER
 
         # The buffer: the head leaves, the entering beat joins behind what stays.
@@ -214,7 +216,9 @@ def chunk_mux(
                 if out_last:
                     state.next = t_state.IDLE
                     if message_end:
-                        in_progress.next[owner] = False
+                        for index in range(n):
+                            if owner == index:
+                                in_progress.next[index] = False
         elif enter:
             if count == 0:
                 head_data.next = enter_data

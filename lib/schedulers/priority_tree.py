@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from myhdl import Signal, always_comb, block, concat, intbv, modbv
+from myhdl import Constant, Signal, always_comb, block, concat, intbv, modbv
 
 
 def tree_width(n: int) -> int:
@@ -39,6 +39,9 @@ def priority_tree(
 ) -> Any:
     """Combinational argmin over the valid leaves.
 
+    Every node is its own block on its own signals (no arrays of signals): each is driven on
+    every path, and GHDL's synthesis infers no memory from the tree.
+
     Args:
         valid: intbv[n] signal, the candidates.
         keys: n signals of `key_bits` (smaller is more urgent), or [] for index order.
@@ -53,111 +56,109 @@ def priority_tree(
     width = tree_width(n)
     levels = width.bit_length() - 1
     kb = max(key_bits, 1)
-    node_valid = {level: Signal(intbv(0)[width >> level :]) for level in range(levels + 1)}
-    node_key = {
-        level: [Signal(intbv(0)[kb:]) for _ in range(width >> level)] for level in range(levels + 1)
-    }
-    node_index = {
-        level: [Signal(intbv(0)[level + 1 :]) for _ in range(width >> level)]
-        for level in range(levels + 1)
-    }
-    parts = [tree_leaves(valid, keys, node_valid[0], node_key[0], node_index[0], n, key_bits)]
+    sign = kb - 1 if modular else kb
+    parts = []
+    node_valid, node_key, node_index = [], [], []
+    for i in range(width):
+        # Leaves: each index is a constant 0 bit below the bits the levels above add, so that
+        # all levels share one form; the root drops it. Padding and key-less leaves are
+        # constants (synthesis folds their comparators).
+        node_index.append(Constant(intbv(0)[1:]))
+        node_key.append(keys[i] if key_bits and i < n else Constant(intbv(0)[kb:]))
+        if i < n:
+            leaf = Signal(bool(0))
+            parts.append(tree_leaf(valid, i, leaf))
+            node_valid.append(leaf)
+        else:
+            node_valid.append(Constant(bool(0)))
+    live = n  # leaves, then nodes, with a candidate below
     for level in range(1, levels + 1):
-        parts.append(
-            tree_level(
-                node_valid[level - 1],
-                node_key[level - 1],
-                node_index[level - 1],
-                node_valid[level],
-                node_key[level],
-                node_index[level],
-                width >> level,
-                kb,
-                modular,
+        valid_out, key_out, index_out = [], [], []
+        for j in range(width >> level):
+            if 2 * j >= live:  # only padding below: a padding node
+                valid_out.append(Constant(bool(0)))
+                key_out.append(Constant(intbv(0)[kb:]))
+                index_out.append(Constant(intbv(0)[level + 1 :]))
+                continue
+            valid_out.append(Signal(bool(0)))
+            key_out.append(Signal(intbv(0)[kb:]))
+            index_out.append(Signal(intbv(0)[level + 1 :]))
+            parts.append(
+                tree_node(
+                    node_valid[2 * j],
+                    node_valid[2 * j + 1],
+                    node_key[2 * j],
+                    node_key[2 * j + 1],
+                    node_index[2 * j],
+                    node_index[2 * j + 1],
+                    valid_out[j],
+                    key_out[j],
+                    index_out[j],
+                    kb,
+                    sign,
+                )
             )
-        )
-    parts.append(
-        tree_root(
-            node_valid[levels], node_key[levels], node_index[levels], best, best_valid, best_key
-        )
-    )
+        node_valid, node_key, node_index = valid_out, key_out, index_out
+        live = -(-live // 2)  # nodes of this level with a candidate below
+    parts.append(tree_root(node_valid[0], node_key[0], node_index[0], best, best_valid, best_key))
     return parts
 
 
 @block
-def tree_leaves(
-    valid: Any,
-    keys: list[Any],
-    leaf_valid: Any,
-    leaf_key: list[Any],
-    leaf_index: list[Any],
-    n: int,
-    bits: int,
-):
-    """Leaf level; without keys every key is the constant 0 (synthesis folds the comparators).
-
-    Every leaf's index is a constant 0 bit below the bits the levels above add, so that all
-    levels share one form; the root drops it.
-    """
-    width = len(leaf_index)
-    if bits == 0:
-
-        @always_comb
-        def pass_valid():
-            leaf_valid.next = valid
-            for i in range(width):
-                leaf_key[i].next = 0
-                leaf_index[i].next = 0
-
-        return pass_valid
+def tree_leaf(valid: Any, index: int, leaf: Any) -> Any:
+    """Leaf `index`: the candidate's valid bit."""
 
     @always_comb
-    def pass_leaves():
-        leaf_valid.next = valid
-        for i in range(width):
-            leaf_index[i].next = 0
-        for i in range(n):
-            leaf_key[i].next = keys[i]
+    def pass_valid() -> None:
+        leaf.next = valid[index]
 
-    return pass_leaves
+    return pass_valid
 
 
 @block
-def tree_level(valid_in, key_in, index_in, valid_out, key_out, index_out, count, bits, modular):
-    """One level of nodes: the right operand wins on the sign of (right - left).
+def tree_node(
+    valid_l: Any,
+    valid_r: Any,
+    key_l: Any,
+    key_r: Any,
+    index_l: Any,
+    index_r: Any,
+    valid_out: Any,
+    key_out: Any,
+    index_out: Any,
+    bits: int,
+    sign: int,
+) -> Any:
+    """One node: the right operand wins on the sign of (right - left).
 
     Bit `bits` of the zero-extended difference is the borrow of an unsigned comparison, bit
     `bits - 1` the sign of the wrap-around difference.
     """
-    sign = bits - 1 if modular else bits
 
     @always_comb
-    def nodes():
+    def node() -> None:
         diff = modbv(0)[bits + 1 :]
-        for j in range(count):
-            diff[:] = concat(False, key_in[2 * j + 1]) - concat(False, key_in[2 * j])
-            valid_out.next[j] = valid_in[2 * j] or valid_in[2 * j + 1]
-            if valid_in[2 * j + 1] and (not valid_in[2 * j] or diff[sign]):
-                key_out[j].next = key_in[2 * j + 1]
-                index_out[j].next = concat(True, index_in[2 * j + 1])
-            else:
-                key_out[j].next = key_in[2 * j]
-                index_out[j].next = concat(False, index_in[2 * j])
+        diff[:] = concat(False, key_r) - concat(False, key_l)
+        valid_out.next = valid_l or valid_r
+        if valid_r and (not valid_l or diff[sign]):
+            key_out.next = key_r
+            index_out.next = concat(True, index_r)
+        else:
+            key_out.next = key_l
+            index_out.next = concat(False, index_l)
 
-    return nodes
+    return node
 
 
 @block
-def tree_root(
-    valid: Any, key: list[Any], index: list[Any], best: Any, best_valid: Any, best_key: Any
-):
+def tree_root(valid: Any, key: Any, index: Any, best: Any, best_valid: Any, best_key: Any) -> Any:
     """The root node's index, validity and key drive the tree's outputs."""
     top = len(best) + 1
 
     @always_comb
-    def drive():
-        best.next = index[0][top:1]
-        best_valid.next = valid[0]
-        best_key.next = key[0]
+    def drive() -> None:
+        best.next = index[top:1]
+        best_valid.next = valid
+        best_key.next = key
 
     return drive

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import json
 
+import numpy as np
 import pytest
 from rosbags.rosbag2 import StoragePlugin
 from rosbags.rosbag2 import Writer as Rosbag2Writer
@@ -17,8 +18,15 @@ from typer.testing import CliRunner
 import rfc.cli.msg
 from rfc.cli import app
 from rfc.lib.converters.loopback_run import LoopbackReport, LoopbackResult
-from rfc.messages.rosbags_adapter import MessageTypes, Middleware, read_bag
+from rfc.messages.rosbags_adapter import (
+    MessageTypes,
+    Middleware,
+    message_types,
+    read_bag,
+    write_bag,
+)
 from tests.conftest import shared_file
+from tests.examples.multi_type.test_system import twist
 from tests.support.cli import run_rfc
 
 NAV2 = "bags/nav2_turtlebot.mcap"
@@ -176,3 +184,24 @@ def test_a_bag_without_messages_says_so(tmp_path):
     result = run_rfc("msg", "loopback", "my_msgs/msg/Pair", "--bag", bag, "--msg-path", defs)
     assert result.returncode == 1
     assert "holds no messages at all" in result.stderr
+
+
+def test_verilator_gives_ghdls_bytes_and_cycles(tmp_path):
+    rng = np.random.default_rng(11)
+    types = message_types("ros2")
+    kind = "geometry_msgs/msg/TwistStamped"
+    messages = []
+    for index in range(9):  # frame ids of 0 … 8 bytes: every length modulo the 32-bit bus
+        values = twist(rng)
+        values["header"]["frame_id"] = "f" * index
+        messages.append(
+            ("/cmd_vel", 1000 * (index + 1), types.serialize(types.build(kind, values), kind))
+        )
+    bag = tmp_path / "twists.mcap"
+    write_bag(bag, types, {"/cmd_vel": kind}, messages)
+    reports = {
+        simulator: loopback_json(kind, "--bag", bag, "--width", "32", "--simulator", simulator)
+        for simulator in ("ghdl", "verilator")
+    }
+    assert reports["ghdl"]["equal"] is True
+    assert reports["verilator"] == reports["ghdl"]

@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import json
+import subprocess
+
 import pytest
 
 from rfc.lower.netlist import EntityDecl, Mode, Netlist, NetlistError, PortDecl, constant
@@ -93,3 +96,53 @@ def test_inputs_cannot_be_left_open():
     top = two_counters()
     with pytest.raises(NetlistError, match="input clk must be driven"):
         top.instance("c", COUNTER, {"clk": None, "rst": None, "enable": None, "count": None})
+
+
+def yosys_ports(files: list, top: str, workdir) -> dict:
+    """The ports of `top` as Yosys elaborates the Verilog: name → (direction, bits)."""
+    out = workdir / "design.json"
+    script = f"read_verilog {' '.join(map(str, files))}; hierarchy -check -top {top}; proc; "
+    script += f"write_json {out}"
+    result = subprocess.run(["yosys", "-q", "-p", script], capture_output=True, text=True)
+    assert result.returncode == 0, result.stderr
+    ports = json.loads(out.read_text())["modules"][top]["ports"]
+    return {name: (port["direction"], len(port["bits"])) for name, port in ports.items()}
+
+
+def test_the_verilog_rendering_elaborates_in_yosys_with_the_vhdl_ports(tmp_path):
+    start_new_design()
+    files = convert_myhdl(counter_instance(), "counter8", tmp_path)
+    top = tmp_path / "pair.v"
+    top.write_text(two_counters().render_verilog())
+    assert top.read_text().startswith("// two counters side by side\n")
+    assert yosys_ports([files[-1], top], "pair", tmp_path) == {
+        "clk": ("input", 1),
+        "resetn": ("input", 1),
+        "counts": ("output", 16),
+    }
+
+
+def test_verilog_keywords_are_escaped_so_every_tool_sees_the_same_name(tmp_path):
+    start_new_design()
+    files = convert_myhdl(counter_instance(), "counter8", tmp_path)
+    top = Netlist(
+        EntityDecl(
+            "keywords", (PortDecl("clk", Mode.IN, 1, wire=True), PortDecl("reg", Mode.OUT, 8))
+        )
+    )
+    wire = top.signal("wire", wire=True)
+    top.assign(wire, "not clk")
+    top.instance(
+        "module",
+        COUNTER,
+        {"clk": top.port("clk"), "rst": wire, "enable": wire, "count": top.port("reg")},
+    )
+    (tmp_path / "keywords.v").write_text(top.render_verilog())
+    ports = yosys_ports([files[-1], tmp_path / "keywords.v"], "keywords", tmp_path)
+    assert ports == {"clk": ("input", 1), "reg": ("output", 8)}
+
+
+def test_only_the_inversion_of_a_wire_is_accepted_as_expression_text():
+    top = two_counters()
+    with pytest.raises(NetlistError, match="'resetn and clk' is not the inversion"):
+        top.assign(top.signal("other", wire=True), "resetn and clk")

@@ -24,7 +24,12 @@ from rfc.lib.hls.adapter import AdapterShape
 from rfc.lib.interface import typed_block
 from rfc.lower.hls_signature import ArgumentKind, HlsArgument, read_top_function
 from rfc.lower.netlist import EntityDecl, Mode, PortDecl
-from rfc.lower.system.components import Component, adapter_component, convert
+from rfc.lower.system.components import (
+    Component,
+    adapter_component,
+    convert,
+    synthesized_netlist,
+)
 from rfc.lower.system.interfaces import MESSAGE, Pin, accelerator_pins
 from rfc.lower.system.latency import accelerator_latency
 from rfc.messages.limits import Limits
@@ -207,12 +212,15 @@ def _signal_port(declared: PortDecl) -> Port:
 
 
 def _vhdl(
-    accelerator: AcceleratorType, ports: Mapping[str, tuple[Pin, ...]]
+    accelerator: AcceleratorType, ports: Mapping[str, tuple[Pin, ...]], directory: Path
 ) -> AcceleratorHardware:
     signatures = {port: tuple(pin.signal for pin in pins) for port, pins in ports.items()}
     found = vhdl_entity(accelerator, flat_ports(signatures))
     entity = EntityDecl(found.name, tuple(_convention(ports)))
-    component = Component(entity, tuple(accelerator.sources))
+    netlist = synthesized_netlist(tuple(accelerator.sources), found.name, directory)
+    component = Component(
+        entity, tuple(accelerator.sources), verilog=netlist, verilog_by_ghdl=bool(netlist)
+    )
     return AcceleratorHardware((component,), (("", entity),), pins=_own_pins(ports))
 
 
@@ -333,6 +341,8 @@ _BUILDERS: dict[AcceleratorKind, HardwareBuilder] = {
     AcceleratorKind.MYHDL: lambda accelerator, _, ports, directory: _myhdl(
         accelerator, ports, directory
     ),
-    AcceleratorKind.VHDL: lambda accelerator, _, ports, __: _vhdl(accelerator, ports),
+    AcceleratorKind.VHDL: lambda accelerator, _, ports, directory: _vhdl(
+        accelerator, ports, directory
+    ),
     AcceleratorKind.HLS: _hls,
 }

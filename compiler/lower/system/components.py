@@ -1,6 +1,7 @@
-"""The entities of the logic that rfc generates itself, converted from MyHDL to VHDL.
+"""The entities of the logic that rfc generates itself, converted from MyHDL to VHDL and Verilog.
 
-Each is a `Component`: its interface as the netlist sees it and its VHDL files. The converters
+Each is a `Component`: its interface as the netlist sees it, its VHDL files and its Verilog
+file, both from MyHDL's converters (the same module and port names). The converters
 come from `rfc.lib.converters`, the manager from `rfc.lib.manager`, the ap_ctrl wrapper of HLS
 cores from `rfc.lib.hls`, the handshake fork of fan-out from `rfc.lib.fork`, the gate and the
 guard that drop malformed frames from `rfc.lib.converters.malformed` and `.guard`.
@@ -8,13 +9,14 @@ guard that drop malformed frames from `rfc.lib.converters.malformed` and `.guard
 
 from __future__ import annotations
 
+import tempfile
 import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
-from myhdl import ToVHDLWarning
+from myhdl import ToVerilogWarning, ToVHDLWarning
 
 from rfc.ir.infrastructure import Converter
 from rfc.lib.converters.buffers import Buffer, buffered_ports, buffered_publisher, buffers_of
@@ -31,7 +33,7 @@ from rfc.lib.manager.entity import ManagerShape, manager_ports, manager_top
 from rfc.lower.netlist import EntityDecl
 from rfc.lower.system.interfaces import declaration
 from rfc.messages.limits import Limits
-from rfc.toolchain import convert_myhdl
+from rfc.toolchain import GhdlError, convert_myhdl, synthesize_verilog
 
 
 @dataclass(frozen=True)
@@ -42,11 +44,26 @@ class Component:
         entity: Its interface.
         files: Its VHDL files in compile order (MyHDL's package first, where it needs one).
         buffers: The FIFOs it holds for a message's strings and sequences.
+        verilog: Its Verilog files (none for a VHDL accelerator until GHDL synthesizes it,
+            nor for a vendor core).
+        verilog_by_ghdl: Whether `verilog` is GHDL's netlist of VHDL (whose Verilog writer
+            has known bugs: fine for Yosys's estimate, not for simulation).
     """
 
     entity: EntityDecl
     files: tuple[Path, ...] = ()
     buffers: tuple[Buffer, ...] = ()
+    verilog: tuple[Path, ...] = ()
+    verilog_by_ghdl: bool = False
+
+
+def _component(entity: EntityDecl, files: Sequence[Path]) -> Component:
+    """A component from MyHDL's output: VHDL files first, then the Verilog file."""
+    return Component(
+        entity,
+        tuple(f for f in files if f.suffix == ".vhd"),
+        verilog=tuple(f for f in files if f.suffix == ".v"),
+    )
 
 
 def entity_of(name: str, ports: Sequence[Port]) -> EntityDecl:
@@ -62,16 +79,31 @@ def convert(
     what: str,
     **parameters: Any,
 ) -> Component:
-    """Elaborate ``body(**parameters, **ports)`` as entity `name` and convert it to VHDL."""
+    """Elaborate ``body(**parameters, **ports)`` as entity `name`; convert to VHDL and Verilog."""
     with elaboration(), warnings.catch_warnings():
         # MyHDL notes every unread or constant internal signal; generated designs have many.
         warnings.simplefilter("ignore", ToVHDLWarning)
+        warnings.simplefilter("ignore", ToVerilogWarning)
         warnings.simplefilter("ignore", UserWarning)
         top = top_block(name, [p.name for p in ports], body, **parameters)
-        files = convert_myhdl(
-            top(**port_signals(ports)), name, directory, verilog=False, header=f"{name}: {what}"
-        )
-    return Component(entity_of(name, ports), tuple(files))
+        files = convert_myhdl(top(**port_signals(ports)), name, directory, header=f"{name}: {what}")
+    return _component(entity_of(name, ports), files)
+
+
+def synthesized_netlist(sources: Sequence[Path], top: str, directory: Path) -> tuple[Path, ...]:
+    """A VHDL entity's Verilog as GHDL synthesizes it, or none when GHDL cannot.
+
+    MyHDL's back-ends do not read VHDL, so GHDL's synthesis is the only way to give a VHDL
+    accelerator a Verilog view; an entity it refuses stays VHDL (the report says which).
+    """
+    target = directory / f"{top}.v"
+    try:
+        with tempfile.TemporaryDirectory(prefix="rfc-ghdl-") as scratch:
+            text = synthesize_verilog(sources, top, Path(scratch))
+    except GhdlError:
+        return ()
+    target.write_text(f"// {top}: GHDL's synthesized netlist of a VHDL accelerator\n{text}")
+    return (target,)
 
 
 def converter_component(
@@ -92,7 +124,7 @@ def converter_component(
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", UserWarning)
         generated = generate(converter_plan, side, directory, name)
-    return Component(entity_of(name, generated.ports), tuple(generated.vhdl))
+    return _component(entity_of(name, generated.ports), generated.files)
 
 
 def manager_component(shape: ManagerShape, directory: Path, name: str) -> Component:
@@ -100,15 +132,15 @@ def manager_component(shape: ManagerShape, directory: Path, name: str) -> Compon
     ports = manager_ports(shape)
     with elaboration(), warnings.catch_warnings():
         warnings.simplefilter("ignore", ToVHDLWarning)
+        warnings.simplefilter("ignore", ToVerilogWarning)
         warnings.simplefilter("ignore", UserWarning)
         files = convert_myhdl(
             manager_top(shape, name)(**port_signals(ports)),
             name,
             directory,
-            verilog=False,
             header=f"{name}: the DMA manager of the system (rfc)",
         )
-    return Component(entity_of(name, ports), tuple(files))
+    return _component(entity_of(name, ports), files)
 
 
 def fork_component(consumers: int, directory: Path, name: str) -> Component:

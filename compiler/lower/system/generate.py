@@ -52,6 +52,10 @@ class SystemHardware:
         top: The top-level entity.
         netlist: Its wiring.
         files: Every VHDL file, in compile order, the top level last.
+        verilog: Every Verilog file, in compile order, the top level last.
+        vhdl_only: The entities that have no Verilog (VHDL accelerators GHDL cannot
+            synthesize, vendor cores).
+        ghdl_verilog: The entities whose Verilog is GHDL's netlist (VHDL accelerators).
         bus_width: Bits of the DMA streams.
         hls: The HLS cores it instantiates (their VHDL comes from Vitis HLS, not from rfc).
         multichannel: Whether the DMA must be multichannel (the scheduler preempts).
@@ -63,6 +67,9 @@ class SystemHardware:
     top: str
     netlist: Netlist
     files: tuple[Path, ...]
+    verilog: tuple[Path, ...]
+    vhdl_only: tuple[str, ...]
+    ghdl_verilog: tuple[str, ...]
     bus_width: int
     hls: tuple[HlsCore, ...]
     multichannel: bool
@@ -197,12 +204,19 @@ def generate_system(
     netlist = builder.finish()
     top_file = directory / f"{top_name(design)}.vhd"
     top_file.write_text(netlist.render())
+    top_verilog = directory / f"{top_name(design)}.v"
+    top_verilog.write_text(netlist.render_verilog())
     files = list(dict.fromkeys(f for component in components for f in component.files))
     files.sort(key=lambda f: not f.name.startswith("pck_myhdl"))  # MyHDL's package first
+    verilog = list(dict.fromkeys(f for component in components for f in component.verilog))
+    vendor = [e.name for _, e in builder.cells() if e.vlnv]
     return SystemHardware(
         top=top_name(design),
         netlist=netlist,
         files=(*files, top_file),
+        verilog=(*verilog, top_verilog),
+        vhdl_only=(*(c.entity.name for c in components if not c.verilog), *vendor),
+        ghdl_verilog=tuple(c.entity.name for c in components if c.verilog_by_ghdl),
         bus_width=width,
         hls=tuple(h.hls for h in hardware_types.values() if h.hls is not None),
         multichannel=spec is not None and _preemptive(spec),

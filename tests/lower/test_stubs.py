@@ -8,6 +8,7 @@ objects, VHDL flat ports, a ROS-SW function), and GHDL must accept the logic.
 from __future__ import annotations
 
 import ast
+import subprocess
 from pathlib import Path
 
 import pytest
@@ -97,3 +98,21 @@ def test_an_unknown_accelerator_is_an_error_with_the_names_there_are(tmp_path, n
     assert "Traceback" not in result.stderr
     assert f"no accelerator type or accelerator block '{name}'" in result.stderr
     assert hint in result.stderr
+
+
+def test_the_hls_skeleton_takes_the_franka_state_as_one_struct_and_compiles(tmp_path):
+    spec = franka_spec(tmp_path, "HLS", "kinematics.cpp")
+    text = stub(spec, "Kinematics", "hls")
+    assert "void Kinematics(\n    state_t state,\n    hls::stream<char> &state_header_frame_id," in text
+    assert "//   state.q[6]: float64 (q[6])" in text
+    (tmp_path / "kinematics.cpp").write_text(text)
+    built = run_rfc("build", spec, "-o", tmp_path / "build", "--no-hardware")
+    assert built.returncode == 0, built.stderr
+    header = tmp_path / "build/hls/Kinematics_messages.h"
+    assert header.is_file()
+    compiled = subprocess.run(
+        ["g++", "-std=c++17", "-fsyntax-only", "-I", header.parent,
+         "-I", ROOT / "lib/hls/include", tmp_path / "kinematics.cpp"],
+        capture_output=True, text=True, check=False,
+    )  # fmt: skip
+    assert compiled.returncode == 0, compiled.stderr

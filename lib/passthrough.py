@@ -12,7 +12,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 from typing import Any
 
-from myhdl import block
+from myhdl import always_seq, block
 
 from rfc.lib.converters.wiring import follow
 from rfc.lib.interface import MessageInterface
@@ -20,23 +20,70 @@ from rfc.lib.interface import MessageInterface
 
 @block
 def pass_through(clk: Any, rst: Any, **ports: Any) -> Any:
-    """Forward ``in0`` to ``out0``; the pins only the input side has stay unread."""
+    """Forward ``in0`` to ``out0``; what only ``in0`` has is taken and dropped."""
     wires = []
     for name, target in ports.items():
         if not name.startswith("out0_"):
             continue
         partner = ports["in0_" + name.removeprefix("out0_")]
         wires.append(follow(target, partner) if name.endswith("ready") else follow(partner, target))
-    return wires
+    unmatched = [
+        signal
+        for name, signal in ports.items()
+        if name.startswith("in0_")
+        and name.endswith("ready")
+        and "out0_" + name.removeprefix("in0_") not in ports
+    ]
+    return wires, [take_all(clk, rst, ready) for ready in unmatched]
 
 
 @block
 def typed_pass_through(clk: Any, rst: Any, in0: Any, out0: Any) -> Any:
-    """Forward interface object ``in0`` to ``out0``; readys flow back."""
-    return [
+    """Forward interface object ``in0`` to ``out0``; readys flow back, the rest is dropped."""
+    wires = [
         follow(target, source) if name == "ready" else follow(source, target)
         for name, source, target in _members(in0, out0)
     ]
+    return wires, [take_all(clk, rst, ready) for ready in _unmatched_readies(in0, out0)]
+
+
+@block
+def take_all(clk: Any, rst: Any, ready: Any) -> Any:
+    """Hold `ready` high after reset: a part of the message no output carries is dropped."""
+
+    @always_seq(clk.posedge, reset=rst)
+    def take() -> None:
+        ready.next = 1
+
+    return take
+
+
+def _unmatched_readies(source: Any, target: Any) -> Iterator[Any]:
+    """The readies of `source`'s handshakes that `target` has no place for."""
+    for name, value in vars(source).items():
+        if name.startswith("_"):
+            continue
+        other = getattr(target, name, None)
+        if other is None:
+            yield from _readies(name, value)
+        elif isinstance(value, MessageInterface):
+            yield from _unmatched_readies(value, other)
+        elif isinstance(value, list):
+            for one, partner in zip(value, other, strict=True):
+                if isinstance(one, MessageInterface):
+                    yield from _unmatched_readies(one, partner)
+
+
+def _readies(name: str, value: Any) -> Iterator[Any]:
+    if isinstance(value, MessageInterface):
+        for inner, member in vars(value).items():
+            if not inner.startswith("_"):
+                yield from _readies(inner, member)
+    elif isinstance(value, list):
+        for member in value:
+            yield from _readies(name, member)
+    elif name == "ready":
+        yield value
 
 
 def _members(source: Any, target: Any) -> Iterator[tuple[str, Any, Any]]:

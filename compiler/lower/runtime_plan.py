@@ -44,10 +44,14 @@ def function_source(accelerator: AcceleratorType) -> tuple[Path, str]:
     Raises:
         RfcError: Neither a Python reference nor a Python source names a function.
     """
-    if accelerator.reference_function is not None:
-        source = inspect.getsourcefile(accelerator.reference_function)
+    function = accelerator.reference_function
+    if function is not None and not inspect.isfunction(function):
+        # a C simulation `rfc sim` attached to an HLS accelerator: it runs from its sources
+        return accelerator.sources[0], accelerator.top or accelerator.name
+    if function is not None:
+        source = inspect.getsourcefile(function)
         assert source is not None, "a Python spec's reference is defined in a file"
-        return Path(source), accelerator.reference_function.__name__
+        return Path(source), function.__name__
     if accelerator.reference is not None:
         return accelerator.reference.file, accelerator.reference.name
     python = next((p for p in accelerator.sources if p.suffix == ".py"), None)

@@ -24,6 +24,8 @@ def check_defines(path: Path, name: str, what: str, location: SourceLocation) ->
     Raises:
         RfcError: `path` is not Python source, or defines no `name`.
     """
+    if not path.exists():
+        return  # a source `rfc stub` is asked to write: nothing to check yet
     try:
         tree = ast.parse(path.read_bytes(), filename=str(path))
     except (SyntaxError, ValueError, UnicodeDecodeError) as exc:

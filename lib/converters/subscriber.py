@@ -411,6 +411,12 @@ def rfc_subscriber(plan: Plan, **ports: Any) -> Any:
     @always_comb
     def ros1_verdict() -> None:  # no encapsulation header to check (nor a constant to compare)
         failed.next = abort or trail != 0
+        if abort:
+            error_reason.next = cause
+        elif trail != 0:
+            error_reason.next = TRAILING
+        else:
+            error_reason.next = 0
 
     verdict = cdr_verdict if cdr else ros1_verdict
 

@@ -39,7 +39,8 @@ def test_sigint_stops_rfc_sim_and_the_simulator(tmp_path):
     write_bag(bag, types, {"/amcl_pose": POSE}, rows)
     spec = system_copy(tmp_path, "pose_mixed.yaml")
     out = tmp_path / "out.mcap"
-    command = [sys.executable, "-m", "rfc", "sim", spec, "--bag", bag, "--out", out]
+    command = [sys.executable, "-m", "rfc", "sim", spec, "--bag", bag, "--out", out,
+               "--simulator", "ghdl"]  # fmt: skip
     process = subprocess.Popen(
         list(map(str, command)),
         stdout=subprocess.PIPE,

@@ -7,6 +7,7 @@ import pytest
 from rfc.driver import compile_spec
 from rfc.errors import RfcError
 from rfc.lower.runtime_plan import DesignPlan
+from rfc.passes.pipeline import MODEL_PIPELINE
 from rfc.runtime.core import QueueConfig, QueuePolicy, Runtime
 from rfc.runtime.loopback import PassThroughLogic, pass_through_routes
 from rfc.runtime.protocol import Chunk, ChunkFlags
@@ -133,7 +134,7 @@ def test_protocol_errors_and_malformed_messages_are_counted(tmp_path):
 def test_a_failing_software_accelerator_stops_the_run_with_its_message(tmp_path):
     path = system_copy(tmp_path, "pose_mixed.yaml", ("top: clear_covariance", "top: identity"))
     (tmp_path / "passthrough.py").write_text("def identity(message):\n    return 1 / 0\n")
-    design = compile_spec(path)
+    design = compile_spec(path, pipeline=MODEL_PIPELINE)  # its logic is PassThroughLogic
     runtime = Runtime(DesignPlan(design))
     message = pose_messages(runtime.plan.types, 1)[0]
     runtime.offer(message.topic, message.data, 0)

@@ -103,7 +103,7 @@ def test_an_unknown_accelerator_is_an_error_with_the_names_there_are(tmp_path, n
 def test_the_hls_skeleton_takes_the_franka_state_as_one_struct_and_compiles(tmp_path):
     spec = franka_spec(tmp_path, "HLS", "kinematics.cpp")
     text = stub(spec, "Kinematics", "hls")
-    declaration = "void Kinematics(\n    state_t state,\n    hls::stream<char> &state_header_frame_id"
+    declaration = "state_t state,\n    hls::stream<char> &state_header_frame_id,"
     assert declaration in text
     assert "//   state.q[6]: float64 (q[6])" in text
     (tmp_path / "kinematics.cpp").write_text(text)

@@ -83,6 +83,7 @@ def convert_myhdl(
             )
             files.append(directory / f"{name}.v")
             _indexed_part_selects(files[-1])
+            _negative_literals(files[-1])
     return files
 
 
@@ -97,6 +98,21 @@ def _indexed_part_selects(path: Path) -> None:
     """
     text = path.read_text()
     fixed = _LOOP_SLICE.sub(lambda m: f"[({m.group(1)} * {m.group(2)}) +: {m.group(2)}]", text)
+    if fixed != text:
+        path.write_text(fixed)
+
+
+_NEGATIVE_LITERAL = re.compile(r"\b(\d+)'d-(\d+)\b")
+
+
+def _negative_literals(path: Path) -> None:
+    """Write MyHDL's negative sized constants, ``50'd-5``, as Verilog does: ``-50'd5``.
+
+    MyHDL (0.11.52) prints the sign after the base, which Verilator refuses ("Number is missing
+    value digits"); the negation of the sized literal gives the same two's-complement bits.
+    """
+    text = path.read_text()
+    fixed = _NEGATIVE_LITERAL.sub(lambda m: f"-{m.group(1)}'d{m.group(2)}", text)
     if fixed != text:
         path.write_text(fixed)
 

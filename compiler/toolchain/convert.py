@@ -106,13 +106,14 @@ _NEGATIVE_LITERAL = re.compile(r"\b(\d+)'d-(\d+)\b")
 
 
 def _negative_literals(path: Path) -> None:
-    """Write MyHDL's negative sized constants, ``50'd-5``, as Verilog does: ``-50'd5``.
+    """Write MyHDL's negative sized constants, ``50'd-5``, as Verilog does: ``-50'sd5``.
 
     MyHDL (0.11.52) prints the sign after the base, which Verilator refuses ("Number is missing
-    value digits"); the negation of the sized literal gives the same two's-complement bits.
+    value digits"); the negated signed literal gives the same two's-complement bits and stays
+    signed in comparisons.
     """
     text = path.read_text()
-    fixed = _NEGATIVE_LITERAL.sub(lambda m: f"-{m.group(1)}'d{m.group(2)}", text)
+    fixed = _NEGATIVE_LITERAL.sub(lambda m: f"-{m.group(1)}'sd{m.group(2)}", text)
     if fixed != text:
         path.write_text(fixed)
 

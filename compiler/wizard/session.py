@@ -171,18 +171,10 @@ class Session:
         return self.prompter.ask(f"Scheduler ({choices})", default, _scheduler)
 
     def _source(self, kind: str) -> Callable[[str, SourceLocation], str]:
-        """Sources rfc cannot write a skeleton of (HLS) must exist already."""
+        """A source path: one that does not exist yet gets its skeleton (`rfc stub`)."""
 
         def check(text: str, location: SourceLocation) -> str:
-            _text(text, location)
-            if kind == "HLS" and not (self.base / text).is_file():
-                raise RfcError(
-                    f"HLS source '{text}' does not exist (paths are relative to {self.base})",
-                    location=location,
-                    hint="write the C++ function first; rfc writes skeletons of MyHDL, VHDL "
-                    "and ROS-SW accelerators only",
-                )
-            return text
+            return _text(text, location)
 
         return check
 

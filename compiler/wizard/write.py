@@ -59,9 +59,11 @@ def write_stubs(system: SystemAnswers, spec: Path) -> tuple[Path, ...]:
         if passes_through(accelerator):
             text = reference_stub(accelerator)
         else:
-            language = {"ROS-SW": StubLanguage.PYTHON, "VHDL": StubLanguage.VHDL}.get(
-                accelerator.kind, StubLanguage.MYHDL
-            )
+            language = {
+                "ROS-SW": StubLanguage.PYTHON,
+                "VHDL": StubLanguage.VHDL,
+                "HLS": StubLanguage.HLS,
+            }.get(accelerator.kind, StubLanguage.MYHDL)
             text = accelerator_stub(design, accelerator.name, language)
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_text(text, encoding="utf-8")

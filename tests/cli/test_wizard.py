@@ -163,6 +163,19 @@ def test_a_myhdl_accelerator_without_source_gets_rfc_stubs_skeleton_and_builds(t
     assert build.returncode == 0, build.stderr
 
 
+def test_an_hls_accelerator_without_source_gets_rfc_stubs_skeleton_and_checks(tmp_path):
+    answers = tmp_path / "answers.txt"
+    answers.write_text("\n" * 14 + "Scale\nHLS\n")
+    result = run_rfc("wizard", "--answers", answers, cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert "./scale.cpp does not exist yet; write a skeleton there? (y/n) [y]: " in result.stdout
+    skeleton = (tmp_path / "scale.cpp").read_text()
+    shown = run_rfc("stub", tmp_path / "project.yaml", "Scale", "--lang", "hls")
+    assert skeleton == shown.stdout
+    assert "void Scale(" in skeleton
+    assert run_rfc("check", tmp_path / "project.yaml").returncode == 0
+
+
 def test_with_periods_the_wizard_offers_the_dse_recommendation(tmp_path):
     answers = tmp_path / "answers.txt"
     answers.write_text("\n" * 14 + "Scale\nMyHDL\n" + "\n" * 11 + "10 us\n")

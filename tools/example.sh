@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The main job: set up, then build the quaternion example (paper Listing 1) and simulate it.
 # rfc build generates the whole system (VHDL, Vivado and HLS scripts, ROS 2 node, report);
-# rfc sim replays 200 random orientations through the generated logic in GHDL and writes the
+# rfc sim replays 200 random orientations through the generated logic (Verilator; GHDL with --simulator ghdl) and writes the
 # Euler angles; the last step compares them with the accelerator's Python reference.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)

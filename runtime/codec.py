@@ -23,7 +23,8 @@ from rfc.runtime.layout import LENGTH_PREFIX_SIZE, PRIMITIVE_DTYPES, FieldKind, 
 #: The CDR encapsulation header rfc writes: plain CDR, little-endian, no options.
 CDR_LITTLE_ENDIAN = b"\x00\x01\x00\x00"
 
-_STRUCTS = {
+#: Little-endian packing of each ROS primitive (one element).
+PRIMITIVE_STRUCTS = {
     name: struct.Struct("<" + code)
     for name, code in {
         "bool": "?",
@@ -41,7 +42,7 @@ _STRUCTS = {
         "float64": "d",
     }.items()
 }
-_LENGTH = _STRUCTS["uint32"]
+_LENGTH = PRIMITIVE_STRUCTS["uint32"]
 
 Values = dict[str, Any]
 
@@ -75,7 +76,7 @@ def _encode_fields(layout: Layout, values: Mapping[str, Any], out: bytearray, ba
         value = values[field.path]
         if field.kind is FieldKind.PRIMITIVE:
             _pad(out, base, field.align)
-            out += _STRUCTS[field.element_type].pack(value)
+            out += PRIMITIVE_STRUCTS[field.element_type].pack(value)
         elif field.kind is FieldKind.STRING:
             _encode_string(value, out, base, cdr)
         else:
@@ -166,7 +167,7 @@ class _Reader:
         values: Values = {}
         for field in layout.fields:
             if field.kind is FieldKind.PRIMITIVE:
-                codec = _STRUCTS[field.element_type]
+                codec = PRIMITIVE_STRUCTS[field.element_type]
                 (values[field.path],) = codec.unpack(self.take(codec.size, field.align))
             elif field.kind is FieldKind.STRING:
                 values[field.path] = self.string(field.path, field.bound)

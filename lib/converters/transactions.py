@@ -10,7 +10,6 @@ can use them too.
 
 from __future__ import annotations
 
-import struct
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
@@ -21,22 +20,7 @@ from rfc.lib.converters.steps import Loop, Payload, Plan, Record, SlotRole
 from rfc.messages.codec import Values, default_values
 from rfc.messages.layout import FieldKind, Layout
 from rfc.messages.rosbags_adapter import PRIMITIVE_DTYPES
-
-_FORMATS = {
-    "bool": "?",
-    "byte": "b",
-    "char": "B",
-    "int8": "b",
-    "uint8": "B",
-    "int16": "h",
-    "uint16": "H",
-    "int32": "i",
-    "uint32": "I",
-    "int64": "q",
-    "uint64": "Q",
-    "float32": "f",
-    "float64": "d",
-}
+from rfc.runtime.codec import PRIMITIVE_STRUCTS
 
 
 @dataclass
@@ -58,17 +42,15 @@ def port_value(ros_type: str, value: Any) -> int:
     """The unsigned integer a field port carries for a value (floats as IEEE 754 bits)."""
     if ros_type == "bool":
         return int(bool(value))
-    code = _FORMATS[ros_type]
-    packed = struct.pack("<" + code, value)
-    return int.from_bytes(packed, "little")
+    return int.from_bytes(PRIMITIVE_STRUCTS[ros_type].pack(value), "little")
 
 
 def field_value(ros_type: str, bits: int) -> Any:
     """The value a field port's unsigned integer stands for (inverse of `port_value`)."""
     if ros_type == "bool":
         return bool(bits)
-    code = _FORMATS[ros_type]
-    return struct.unpack("<" + code, bits.to_bytes(struct.calcsize(code), "little"))[0]
+    packing = PRIMITIVE_STRUCTS[ros_type]
+    return packing.unpack(bits.to_bytes(packing.size, "little"))[0]
 
 
 def transactions(plan: Plan, values: Mapping[str, Any]) -> Transactions:

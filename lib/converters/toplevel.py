@@ -17,10 +17,14 @@ import itertools
 import linecache
 import sys
 import types
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, MutableSet, Sequence
 from typing import Any
 
 from myhdl import ResetSignal, Signal, block, intbv
+from myhdl import _block as myhdl_block_module
+from myhdl import _instance as myhdl_instance_module
+from myhdl import _visitors as myhdl_visitors_module
+from myhdl.conversion import _analyze as myhdl_analyze_module
 
 from rfc.lib.converters.ports import WIRES, Port, PortRole
 from rfc.toolchain import start_new_design
@@ -70,54 +74,108 @@ def top_block(
     )
     module = ast.fix_missing_locations(ast.Module(body=[function], type_ignores=[]))
     source = ast.unparse(module) + "\n"
-    # MyHDL reads the function's source through `inspect`, which looks in linecache, and maps
-    # every frame to its module: registering one keeps that lookup from rescanning sys.modules.
-    module = types.ModuleType(f"rfc_generated_top_{next(_serial)}")
-    module.__file__ = f"<{module.__name__}>"
-    linecache.cache[module.__file__] = (
-        len(source),
-        None,
-        source.splitlines(keepends=True),
-        module.__file__,
-    )
-    sys.modules[module.__name__] = module
-    module.__dict__.update(_body=body, _parameters=parameters)
-    exec(compile(source, module.__file__, "exec"), module.__dict__)  # source built from an AST
-    return block(module.__dict__[name])
+    # MyHDL reads the function's source through `inspect`, which finds it in linecache.
+    module_name = f"rfc_generated_top_{next(_serial)}"
+    filename = f"<{module_name}>"
+    linecache.cache[filename] = (len(source), None, source.splitlines(keepends=True), filename)
+    namespace: dict[str, Any] = {"_body": body, "_parameters": parameters, "__name__": module_name}
+    exec(compile(source, filename, "exec"), namespace)  # source built from an AST
+    return block(namespace[name])
+
+
+def _frames_without_context(context: int = 1) -> list[inspect.FrameInfo]:
+    """`inspect.stack` without reading source lines: the caller's frames, outermost last."""
+    frame = sys._getframe(1)
+    records = []
+    while frame is not None:
+        code = frame.f_code
+        records.append(
+            inspect.FrameInfo(frame, code.co_filename, frame.f_lineno, code.co_name, None, None)
+        )
+        frame = frame.f_back
+    return records
+
+
+class _QuickInspect(types.ModuleType):
+    """The `inspect` module as MyHDL's own modules see it inside `elaboration`: a quick `stack`."""
+
+    stack = staticmethod(_frames_without_context)
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(inspect, name)
+
+
+class _InsertionOrderedSet(MutableSet[Any]):
+    """A set that iterates in insertion order, for MyHDL's sets of signal names.
+
+    MyHDL collects the signals a process reads and writes in plain sets of names and writes
+    sensitivity lists and reset branches in their iteration order, which follows the string
+    hashes and so changes from process to process. In insertion order (the order of the source)
+    the same design converts to the same bytes every time.
+    """
+
+    def __init__(self, items: Iterable[Any] = ()) -> None:
+        self._items = dict.fromkeys(items)
+
+    def __contains__(self, item: object) -> bool:
+        return item in self._items
+
+    def __iter__(self) -> Iterator[Any]:
+        return iter(self._items)
+
+    def __len__(self) -> int:
+        return len(self._items)
+
+    def add(self, value: Any) -> None:
+        self._items[value] = None
+
+    def discard(self, value: Any) -> None:
+        self._items.pop(value, None)
+
+    def __repr__(self) -> str:
+        return f"{{{', '.join(map(repr, self._items))}}}"
+
+
+_ABSENT = object()
+#: The MyHDL modules that call `inspect.stack()` for every block and process they create.
+_STACK_CALLERS = (myhdl_block_module, myhdl_instance_module)
+#: The MyHDL modules that gather signal names in sets that decide the order of the output.
+_NAME_SET_USERS = (myhdl_visitors_module, myhdl_analyze_module)
 
 
 @contextlib.contextmanager
 def elaboration() -> Iterator[None]:
     """Elaborate and convert MyHDL designs quickly, with names that do not depend on history.
 
-    Two things in MyHDL (0.11.52) need help when one process generates many designs:
+    Three things in MyHDL (0.11.52) need help when one process generates many designs:
 
     * it calls `inspect.stack()` for every block and process it creates, to learn its caller;
       the standard one reads the source context of every frame on the stack, which dominates
       the time to elaborate a converter with hundreds of field registers. Within this context
-      `inspect.stack` returns the same frames without source context;
+      the two MyHDL modules that call it see an `inspect` whose `stack` returns the same frames
+      without source context; the `inspect` module itself, and everyone else's use of it, is
+      never changed;
     * it makes block names unique against every name used since the process started, growing
       them with each design (``x_0_1_2 ...``) until VHDL refuses them; the context starts from
-      an empty set of names.
+      an empty set of names;
+    * it orders sensitivity lists and reset branches by string hashes, so the same design gave
+      different bytes in every process (and missed every cache keyed by content): within the
+      context, the two MyHDL modules that collect those names use insertion-ordered sets.
 
-    The context is not thread-safe.
+    Elaborate and convert inside the same context. The context is not thread-safe (MyHDL's own
+    elaboration is not either); it restores every module it touched on exit.
     """
-    original = inspect.stack
-
-    def stack(context: int = 1) -> list[inspect.FrameInfo]:
-        frame = sys._getframe(1)
-        records = []
-        while frame is not None:
-            code = frame.f_code
-            records.append(
-                inspect.FrameInfo(frame, code.co_filename, frame.f_lineno, code.co_name, None, None)
-            )
-            frame = frame.f_back
-        return records
-
     start_new_design()
-    inspect.stack = stack
+    replacements = [(module, "inspect", _QuickInspect("inspect")) for module in _STACK_CALLERS]
+    replacements += [(module, "set", _InsertionOrderedSet) for module in _NAME_SET_USERS]
+    saved = [(module, name, vars(module).get(name, _ABSENT)) for module, name, _ in replacements]
+    for module, name, value in replacements:
+        setattr(module, name, value)
     try:
         yield
     finally:
-        inspect.stack = original
+        for module, name, value in saved:
+            if value is _ABSENT:
+                delattr(module, name)
+            else:
+                setattr(module, name, value)

@@ -25,6 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
+from rfc.lib.converters.toplevel import elaboration
 from rfc.lib.schedulers.hardware import top_instance
 from rfc.lib.schedulers.model import model_of
 from rfc.lib.schedulers.spec import AnySchedulerSpec
@@ -46,7 +47,7 @@ def generate_hdl(spec: AnySchedulerSpec, directory: Path, name: str | None = Non
         The VHDL files in compile order, then the Verilog file.
     """
     name = name or entity_name(spec)
-    with warnings.catch_warnings():
+    with elaboration(), warnings.catch_warnings():
         # MyHDL reports the tree's padding and unused key bits as unread signals: expected.
         warnings.simplefilter("ignore")
         return convert_myhdl(

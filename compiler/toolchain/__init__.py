@@ -4,8 +4,8 @@ Every generated block goes through the same path — MyHDL → VHDL (and Verilog
 Yosys `synth_xilinx` on the Verilog for LUT/FF figures, cocotb on GHDL for
 co-simulation — so the converters, schedulers and whole systems share these functions.
 
-Each name is imported from its module on first use: cocotb and MyHDL take about a second to
-import, which `rfc check` does not need to pay.
+Each name is imported from its module on first use: cocotb and MyHDL take most of a second to
+import, which `rfc check` and `rfc --help` need not pay.
 """
 
 from __future__ import annotations
@@ -13,6 +13,7 @@ from __future__ import annotations
 from importlib import import_module
 from typing import Any
 
+#: Every name this package offers, and the module that defines it.
 _MODULES = {
     "CosimError": "cocotb_sim",
     "run_cocotb": "cocotb_sim",

@@ -154,6 +154,7 @@ def _sweep(sizes, dataset, replicates, jobs, output, as_json, verify, synthesis,
     names = (find_dataset(dataset).name,) if dataset else tuple(DATASETS)
     plan = Plan(datasets=names, sizes=sizes, replicates=replicates, seed=seed)
     console = Console(stderr=True, highlight=False)
+    _compile_kernels()
     with _progress(console) as progress:
         task = progress.add_task("simulating", total=1.0)
         result = run_sweep(
@@ -173,7 +174,7 @@ def _sweep(sizes, dataset, replicates, jobs, output, as_json, verify, synthesis,
 
             progress.add_task("verifying in GHDL", total=None)
             checks = verify_hdl(result, jobs)
-    write_sweep(result, checks, output)
+    write_sweep(result, checks, output, jobs)
     report: dict[str, Any] = {**document(result), "output": str(output)}
     if verify:
         report["verify_hdl"] = [check.as_dict() for check in checks]
@@ -192,6 +193,20 @@ def _sweep(sizes, dataset, replicates, jobs, output, as_json, verify, synthesis,
         )
     if verify and not as_json:
         print(f"--verify-hdl: {len(checks)} points equal in GHDL", file=sys.stderr)
+
+
+def _compile_kernels() -> None:
+    """Compile the kernel before the sweep when numba's cache lacks it, saying so (once)."""
+    from rfc.dse.engine import compile_kernels
+    from rfc.dse.kernel import compiled
+
+    if not compiled():
+        print(
+            "compiling the DSE kernels with numba (about 30 s, once: later runs load them from "
+            "its cache)",
+            file=sys.stderr,
+        )
+        compile_kernels()
 
 
 def _progress(console: Console) -> Progress:
@@ -243,6 +258,7 @@ def _project(
 
     criteria = parse_objective(objective or ",".join(DEFAULT_OBJECTIVE))
     design = compile_spec(str(spec))
+    _compile_kernels()
     console = Console(stderr=True, highlight=False)
     with Progress(
         TextColumn("simulating candidates"),

@@ -143,6 +143,13 @@ def run_tasks(
     return {key: np.concatenate([parts[i] for i in sorted(parts)]) for key, parts in rows.items()}
 
 
+def compile_kernels() -> None:
+    """Compile the kernel once, on one tiny replicate, into numba's cache (workers then load it)."""
+    from rfc.dse.datasets import DATASETS, draw
+
+    simulate("LRU", draw(DATASETS["cc1"], 2, 1), 10)
+
+
 def default_jobs() -> int:
     """Worker processes when none are asked for: one per core this process may use."""
     return max(1, len(os.sched_getaffinity(0)))

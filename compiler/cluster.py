@@ -102,7 +102,7 @@ def _on_dask(
                 threads_per_worker=1,
                 processes=True,
                 dashboard_address=None,
-                silence_logs=logging.ERROR,
+                silence_logs=logging.CRITICAL,  # a closing worker logs its lost scheduler
             )
             stack.enter_context(cluster)
             client = stack.enter_context(Client(cluster))

@@ -155,11 +155,12 @@ def sim(
     ] = None,
 ) -> None:
     """Replay a bag through the whole system and write each publisher's messages to OUT."""
-    from rfc.cli.sim_batch import is_batch, run_batch
+    from rfc.cli.sim_batch import is_batch, refuse_batch_options, run_batch
 
     if is_batch(bag):
         run_batch(ctx, spec, bag, out, as_json, jobs, cluster)
         return
+    refuse_batch_options(jobs, cluster)
     from rfc.driver import compile_spec
     from rfc.lower.runtime_plan import DesignPlan
     from rfc.messages.bag_files import check_input_bag, refuse_to_replace_a_non_bag

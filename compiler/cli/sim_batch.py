@@ -48,6 +48,20 @@ def bags_in(directory: Path) -> list[Path]:
     )
 
 
+def refuse_batch_options(jobs: int, cluster: str | None) -> None:
+    """`--jobs` and `--cluster` spread a directory's bags: with one bag they are a mistake.
+
+    Raises:
+        RfcError: One of them is given.
+    """
+    if jobs != 1 or cluster is not None:
+        raise RfcError(
+            "--jobs and --cluster spread the bags of a directory over a cluster; --bag names "
+            "one bag",
+            hint="give --bag a directory of bags, or leave those options out",
+        )
+
+
 @dataclass(frozen=True)
 class BagJob:
     """One bag's replay: the command that runs it, and where it writes."""

@@ -78,3 +78,13 @@ def test_a_directory_without_bags_is_one_clear_error(tmp_path, batch):
     assert result.returncode == 1
     assert f"--bag '{empty}' holds no bag" in result.stderr
     assert not (tmp_path / "o").exists()
+
+
+def test_jobs_with_one_bag_is_refused(tmp_path, batch):
+    spec, bags = batch
+    result = run_rfc(
+        "sim", spec, "--bag", bags / "a.mcap", "--out", tmp_path / "o.mcap", "--jobs", "2", cwd=ROOT
+    )
+    assert result.returncode == 1
+    assert "--jobs and --cluster spread the bags of a directory" in result.stderr
+    assert not (tmp_path / "o.mcap").exists()

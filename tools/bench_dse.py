@@ -6,6 +6,10 @@ Measures, each apart:
   same process takes when the kernels load from numba's on-disk cache (what `rfc dse` pays);
 * the SimSo point: EDF (LOEDF and ROEDF), N = 256, 50,000 cycles, one replicate, warm kernels,
   best of `--repeat` runs, as a ratio to SimSo's 31 s (target: at least 100x);
+* the SimSo point end to end as a user runs it: `rfc dse --n 256 --dataset cc4 --replicates 2
+  --no-synth` in a new process (start, kernels from the cache, the six schedulers and Figure 14's
+  combinations, tables, figures, report), on one process and on `--jobs`, as a ratio to SimSo's
+  31 s per run times the six schedulers' two replicates (372 s; target: at least 100x);
 * the full paper sweep: six schedulers x N in 2..256 on the large dataset (200 replicates of
   10,000 cycles) and the four corner cases (10 replicates of 50,000 cycles), plus Figure 14's
   combinations, on `--jobs` processes (target: 60 s on 2 cores); simulation only, LUT/FF come
@@ -19,7 +23,7 @@ this way), with LUT/FF read from `--resources CSV` (the scheduler synthesis swee
 docs/schedulers/resources.csv) instead of synthesizing again.
 
 Usage: .venv/bin/python tools/bench_dse.py [--jobs 2] [--repeat 3] [--skip-sweep]
-       [--output DIR --resources CSV]
+       [--only-end-to-end] [--output DIR --resources CSV]
 """
 
 from __future__ import annotations
@@ -95,6 +99,24 @@ def simso_point(repeat: int) -> None:
         )
 
 
+def end_to_end(jobs: int, repeat: int) -> None:
+    """`rfc dse` at the SimSo point in a new process, best of `repeat` (bench_startup's timing)."""
+    from bench_startup import best
+
+    anchor = SIMSO_SECONDS * 6 * 2  # six schedulers, two replicates, one SimSo run each
+    with tempfile.TemporaryDirectory(prefix="rfc-dse-") as directory:
+        for workers in sorted({1, jobs}):
+            wall, cpu = best(
+                repeat, "dse", "--n", str(SIMSO_N), "--dataset", "cc4", "--replicates", "2",
+                "--no-synth", "--jobs", str(workers), "-o", str(Path(directory) / "out"), "--json",
+            )  # fmt: skip
+            print(
+                f"rfc dse at the SimSo point, --jobs {workers}, end to end: {wall:.2f} s wall, "
+                f"{cpu:.2f} s CPU: {anchor / wall:.0f}x SimSo's {anchor:.0f} s by wall, "
+                f"{anchor / cpu:.0f}x by CPU (target >= 100x)"
+            )
+
+
 def _cpu_seconds() -> float:
     """User + system time of this process and its finished children."""
     own = resource.getrusage(resource.RUSAGE_SELF)
@@ -153,10 +175,14 @@ def main() -> None:
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--skip-sweep", action="store_true")
+    parser.add_argument("--only-end-to-end", action="store_true")
     parser.add_argument("--output", type=Path)
     parser.add_argument("--resources", type=Path)
     args = parser.parse_args()
     print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")
+    end_to_end(args.jobs, args.repeat)
+    if args.only_end_to_end:
+        return
     compile_times()
     simso_point(args.repeat)
     if not args.skip_sweep:

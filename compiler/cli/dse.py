@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 import sys
+from dataclasses import replace
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -82,6 +83,14 @@ def dse(
     jobs: Annotated[
         int | None, typer.Option(min=1, help="Worker processes (default: one per core).")
     ] = None,
+    cluster: Annotated[
+        str | None,
+        typer.Option(
+            metavar="ADDRESS",
+            help="Run the sweep's simulations on this Dask scheduler (tcp://host:8786; needs "
+            "the cluster extra).",
+        ),
+    ] = None,
     output: Annotated[
         Path | None,
         typer.Option("--output", "-o", metavar="DIR", help="Where results go (sweep: dse/)."),
@@ -124,7 +133,8 @@ def dse(
     if spec is not None:
         _sweep_only(
             {"--n": n, "--dataset": dataset, "--replicates": replicates,
-             "--verify-hdl": verify_hdl, "--no-synth": no_synth, "--seed": seed}
+             "--verify-hdl": verify_hdl, "--no-synth": no_synth, "--seed": seed,
+             "--cluster": cluster}
         )  # fmt: skip
         _project(spec, objective, output, as_json, horizon)
         return
@@ -140,11 +150,13 @@ def dse(
         )
     _sweep(
         _sizes(n), dataset, replicates, workers, output or Path("dse"), as_json, verify_hdl,
-        not no_synth, seed or 0,
+        not no_synth, seed or 0, cluster,
     )  # fmt: skip
 
 
-def _sweep(sizes, dataset, replicates, jobs, output, as_json, verify, synthesis, seed) -> None:
+def _sweep(
+    sizes, dataset, replicates, jobs, output, as_json, verify, synthesis, seed, cluster
+) -> None:
     from rfc.dse.datasets import DATASETS
     from rfc.dse.datasets import dataset as find_dataset
     from rfc.dse.output import write_sweep
@@ -154,6 +166,7 @@ def _sweep(sizes, dataset, replicates, jobs, output, as_json, verify, synthesis,
     names = (find_dataset(dataset).name,) if dataset else tuple(DATASETS)
     plan = Plan(datasets=names, sizes=sizes, replicates=replicates, seed=seed)
     console = Console(stderr=True, highlight=False)
+    _compile_kernels()
     with _progress(console) as progress:
         task = progress.add_task("simulating", total=1.0)
         result = run_sweep(
@@ -161,19 +174,20 @@ def _sweep(sizes, dataset, replicates, jobs, output, as_json, verify, synthesis,
             jobs,
             synthesis=False,
             advance=lambda share: progress.advance(task, share),
+            cluster=cluster,
         )
         if synthesis:
             from rfc.dse.sweep import synthesized_resources
 
             progress.add_task("synthesizing (cached)", total=None)
-            result = type(result)(plan, result.points, synthesized_resources(sizes, jobs))
+            result = replace(result, resources=synthesized_resources(sizes, jobs))
         checks = []
         if verify:
             from rfc.dse.verify import verify_hdl
 
             progress.add_task("verifying in GHDL", total=None)
             checks = verify_hdl(result, jobs)
-    write_sweep(result, checks, output)
+    write_sweep(result, checks, output, jobs)
     report: dict[str, Any] = {**document(result), "output": str(output)}
     if verify:
         report["verify_hdl"] = [check.as_dict() for check in checks]
@@ -182,6 +196,12 @@ def _sweep(sizes, dataset, replicates, jobs, output, as_json, verify, synthesis,
     else:
         _print_sweep(result, Console(highlight=False))
         print(f"wrote tables, figures and report.html into {output}", file=sys.stderr)
+    if result.failures:
+        raise RfcError(
+            f"{len(result.failures)} of the sweep's jobs failed on the cluster, the other "
+            f"points are in {output}: {'; '.join(result.failures)}",
+            hint="rerun the sweep to fill in the missing points",
+        )
     failed = [check for check in checks if not check.equal]
     if failed:
         details = "; ".join(f"{c.scheduler} N={c.n}: {c.error or 'metrics differ'}" for c in failed)
@@ -192,6 +212,20 @@ def _sweep(sizes, dataset, replicates, jobs, output, as_json, verify, synthesis,
         )
     if verify and not as_json:
         print(f"--verify-hdl: {len(checks)} points equal in GHDL", file=sys.stderr)
+
+
+def _compile_kernels() -> None:
+    """Compile the kernel before the sweep when numba's cache lacks it, saying so (once)."""
+    from rfc.dse.engine import compile_kernels
+    from rfc.dse.kernel import compiled
+
+    if not compiled():
+        print(
+            "compiling the DSE kernels with numba (about 30 s, once: later runs load them from "
+            "its cache)",
+            file=sys.stderr,
+        )
+        compile_kernels()
 
 
 def _progress(console: Console) -> Progress:
@@ -243,6 +277,7 @@ def _project(
 
     criteria = parse_objective(objective or ",".join(DEFAULT_OBJECTIVE))
     design = compile_spec(str(spec))
+    _compile_kernels()
     console = Console(stderr=True, highlight=False)
     with Progress(
         TextColumn("simulating candidates"),

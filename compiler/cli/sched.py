@@ -9,8 +9,10 @@ from typing import Annotated, Any
 
 import typer
 from rich.console import Console
+from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
+from rfc.errors import RfcError
 from rfc.lib.schedulers.generate import entity_name, generate_hdl, grant_latency, synthesize
 from rfc.lib.schedulers.spec import (
     DEFAULT_TRANSFER,
@@ -34,7 +36,16 @@ def synth(
             "'LRU(LOEDF,LST)' (children share the inputs evenly, or 'LRU(LOEDF:100,LST:28)').",
         ),
     ],
-    n: Annotated[int, typer.Option("--n", "-n", help="Number of inputs (accelerators).")],
+    n: Annotated[
+        str,
+        typer.Option(
+            "--n",
+            "-n",
+            metavar="N",
+            help="Number of inputs (accelerators); a list such as 8,16,32 sweeps them, one "
+            "synthesis job each.",
+        ),
+    ],
     transfer: Annotated[
         int, typer.Option(help="Transfer time T of every input, in beats.")
     ] = DEFAULT_TRANSFER,
@@ -51,9 +62,31 @@ def synth(
         bool, typer.Option("--no-cache", help="Synthesize even when a cached result exists.")
     ] = False,
     as_json: Annotated[bool, typer.Option("--json", help="Print one JSON document.")] = False,
+    jobs: Annotated[
+        int,
+        typer.Option(
+            min=1, help="With a list of N: synthesize on a local Dask cluster of this many workers."
+        ),
+    ] = 1,
+    cluster: Annotated[
+        str | None,
+        typer.Option(
+            metavar="ADDRESS", help="With a list of N: synthesize on this Dask scheduler."
+        ),
+    ] = None,
 ) -> None:
     """LUT/FF of one scheduler (GHDL synthesis + Yosys synth_xilinx, 7-series) and its latency."""
-    spec = parse_scheduler(algorithm, n, transfer, deadline, counter_bits)
+    sizes = _sizes(n)
+    specs = [parse_scheduler(algorithm, size, transfer, deadline, counter_bits) for size in sizes]
+    if len(specs) > 1:
+        if output is not None:
+            raise RfcError(
+                "--output writes one scheduler's VHDL and Verilog; --n gives several",
+                hint="run rfc sched synth once per N with --output",
+            )
+        _sweep(specs, not no_cache, as_json, jobs, cluster)
+        return
+    spec = specs[0]
     if output is not None:  # rfc's files only, all at once: the writer of rfc build
         fill = partial(generate_hdl, spec)
         replace_directory(output, str(output), fill, command="rfc sched synth")
@@ -62,6 +95,70 @@ def synth(
         print(json.dumps(report, indent=2))
     else:
         Console(highlight=False).print(_table(report))
+
+
+def _sizes(text: str) -> list[int]:
+    try:
+        sizes = sorted({int(part) for part in text.split(",") if part.strip()})
+    except ValueError:
+        raise typer.BadParameter(f"'{text}' is not an integer nor a list such as 8,16") from None
+    if not sizes:
+        raise typer.BadParameter("give at least one N")
+    return sizes
+
+
+def _sweep(
+    specs: list[AnySchedulerSpec], use_cache: bool, as_json: bool, jobs: int, cluster: str | None
+) -> None:
+    """One synthesis job per N, here or on a Dask cluster; the reports in N's order."""
+    from rfc.cluster import run_jobs
+
+    console = Console(stderr=True, highlight=False)
+    with Progress(
+        TextColumn("synthesizing"),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TimeElapsedColumn(),
+        console=console,
+        transient=True,
+        disable=not console.is_terminal,
+    ) as bar:
+        task = bar.add_task("synthesizing", total=len(specs))
+        reports, failures = run_jobs(
+            partial(_report_job, use_cache=use_cache),
+            specs,
+            lambda spec: f"N={spec.n}",
+            workers=jobs,
+            address=cluster,
+            finished=lambda *_: bar.advance(task),
+        )
+    done = [report for report in reports if report is not None]
+    if as_json:
+        print(json.dumps(done, indent=2))
+    else:
+        Console(highlight=False).print(_sweep_table(done))
+    if failures:
+        raise RfcError(
+            f"{len(failures)} of {len(specs)} syntheses failed ({'; '.join(map(str, failures))}); "
+            "the others are above",
+            hint="run the failed N alone to see the whole error",
+        )
+
+
+def _report_job(spec: AnySchedulerSpec, use_cache: bool) -> dict[str, Any]:
+    return synth_report(spec, use_cache=use_cache)
+
+
+def _sweep_table(reports: list[dict[str, Any]]) -> Table:
+    title = f"{reports[0]['algorithm']} scheduler (xc7)" if reports else "no scheduler"
+    table = Table(title=title)
+    for heading in ("N", "LUTs", "flip-flops", "CARRY4", "grant latency"):
+        table.add_column(heading, justify="right")
+    for report in reports:
+        table.add_row(
+            *(str(report[k]) for k in ("n", "lut", "ff", "carry", "grant_latency_cycles"))
+        )
+    return table
 
 
 def synth_report(spec: AnySchedulerSpec, *, use_cache: bool = True) -> dict[str, Any]:

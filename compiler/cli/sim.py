@@ -65,7 +65,13 @@ def sim(
     ctx: typer.Context,
     spec: Annotated[Path, typer.Argument(metavar="SPEC", help="The system specification.")],
     bag: Annotated[
-        Path, typer.Option("--bag", metavar="IN", help="Input bag: ROS 1 .bag, ROS 2 .mcap/.db3.")
+        Path,
+        typer.Option(
+            "--bag",
+            metavar="IN",
+            help="Input bag: ROS 1 .bag, ROS 2 .mcap/.db3; or a directory of bags, each replayed "
+            "into OUT/<its name>.",
+        ),
     ],
     out: Annotated[
         Path,
@@ -140,8 +146,21 @@ def sim(
             "structural top level kept): what synthesis makes of the logic.",
         ),
     ] = False,
+    jobs: Annotated[
+        int, typer.Option(min=1, help="A directory of bags: replay on a local Dask cluster.")
+    ] = 1,
+    cluster: Annotated[
+        str | None,
+        typer.Option(metavar="ADDRESS", help="A directory of bags: replay on this Dask scheduler."),
+    ] = None,
 ) -> None:
     """Replay a bag through the whole system and write each publisher's messages to OUT."""
+    from rfc.cli.sim_batch import is_batch, refuse_batch_options, run_batch
+
+    if is_batch(bag):
+        run_batch(ctx, spec, bag, out, as_json, jobs, cluster)
+        return
+    refuse_batch_options(jobs, cluster)
     from rfc.driver import compile_spec
     from rfc.lower.runtime_plan import DesignPlan
     from rfc.messages.bag_files import check_input_bag, refuse_to_replace_a_non_bag

@@ -115,6 +115,7 @@ def run_tasks(
     tasks: Sequence[Task],
     jobs: int,
     advance: Callable[[float], None] | None = None,
+    cluster: str | None = None,
 ) -> dict[tuple, npt.NDArray[np.float64]]:
     """Run tasks on `jobs` processes and join each point's rows in replicate order.
 
@@ -122,7 +123,13 @@ def run_tasks(
         tasks: The chunks to run.
         jobs: Worker processes (1: in this process).
         advance: Called with each finished task's share of the work (for a progress bar).
+        cluster: A Dask scheduler's address: run the tasks there instead.
+
+    Raises:
+        TasksFailedError: Some tasks raised on the cluster (it holds the others' points).
     """
+    if cluster is not None:
+        return _on_cluster(tasks, cluster, advance)
     total = sum(task.work for task in tasks) or 1.0
     rows: dict[tuple, dict[int, npt.NDArray[np.float64]]] = {task.key: {} for task in tasks}
 
@@ -141,6 +148,53 @@ def run_tasks(
             for future in as_completed(futures):
                 finished(futures[future], future.result())
     return {key: np.concatenate([parts[i] for i in sorted(parts)]) for key, parts in rows.items()}
+
+
+def compile_kernels() -> None:
+    """Compile the kernel once, on one tiny replicate, into numba's cache (workers then load it)."""
+    from rfc.dse.datasets import DATASETS, draw
+
+    simulate("LRU", draw(DATASETS["cc1"], 2, 1), 10)
+
+
+class TasksFailedError(Exception):
+    """Tasks that raised on a cluster, and the points whose tasks all completed."""
+
+    def __init__(self, failures: list[str], rows: dict[tuple, npt.NDArray[np.float64]]) -> None:
+        super().__init__("; ".join(failures))
+        self.failures = failures
+        self.rows = rows
+
+
+def describe(task: Task) -> str:
+    """A task's parameters, as `rfc dse` names them."""
+    dataset, scheduler, n = task.key
+    first = task.part * CHUNK
+    last = first + task.traffic.replicates - 1
+    return f"{scheduler} N={n} {dataset} replicates {first}-{last}"
+
+
+def _on_cluster(
+    tasks: Sequence[Task], address: str, advance: Callable[[float], None] | None
+) -> dict[tuple, npt.NDArray[np.float64]]:
+    from rfc.cluster import run_jobs
+
+    total = sum(task.work for task in tasks) or 1.0
+
+    def finished(task: Task, _: object) -> None:
+        if advance is not None:
+            advance(task.work / total)
+
+    results, failures = run_jobs(_run, tasks, describe, address=address, finished=finished)
+    failed = {task.key for task, result in zip(tasks, results, strict=True) if result is None}
+    rows: dict[tuple, dict[int, npt.NDArray[np.float64]]] = {}
+    for task, result in zip(tasks, results, strict=True):
+        if task.key not in failed:
+            rows.setdefault(task.key, {})[task.part] = result
+    joined = {key: np.concatenate([p[i] for i in sorted(p)]) for key, p in rows.items()}
+    if failures:
+        raise TasksFailedError([str(f) for f in failures], joined)
+    return joined
 
 
 def default_jobs() -> int:

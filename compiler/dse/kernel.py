@@ -15,6 +15,8 @@ input moves while i's message has moved some but not all of its beats.
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 from numba import njit
 
@@ -195,3 +197,15 @@ def run_replicates(tree, transfer, gap, deadline, cycles: int) -> np.ndarray:
         scratch,
     )
     return out
+
+
+def compiled() -> bool:
+    """Whether numba's disk cache holds the kernel, so that a new process loads, not compiles it.
+
+    Always true with ``NUMBA_DISABLE_JIT=1`` (plain Python, nothing to compile).
+    """
+    stats = getattr(simulate, "stats", None)
+    if stats is None:
+        return True
+    module = simulate.__module__.rpartition(".")[2]
+    return any(Path(stats.cache_path).glob(f"{module}.{simulate.__name__}-*.nbi"))

@@ -11,19 +11,24 @@ import json
 import math
 from collections.abc import Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-from rfc.dse.objective import Candidate
-from rfc.dse.plots import write_figures
-from rfc.dse.project import Recommendation
-from rfc.dse.report import render
-from rfc.dse.sweep import SweepResult
 from rfc.dse.tables import document, resources_csv, results_csv, table3_markdown
-from rfc.dse.verify import Check
 from rfc.lower.writer import replace_directory
 
+if TYPE_CHECKING:  # the GHDL verification and the project's ranking load only when used
+    from rfc.dse.objective import Candidate
+    from rfc.dse.project import Recommendation
+    from rfc.dse.sweep import SweepResult
+    from rfc.dse.verify import Check
 
-def write_sweep(result: SweepResult, checks: Sequence[Check], directory: Path) -> None:
-    """Replace `directory` with the sweep's tables, figures and report."""
+
+def write_sweep(
+    result: SweepResult, checks: Sequence[Check], directory: Path, jobs: int = 1
+) -> None:
+    """Replace `directory` with the sweep's tables, figures (on `jobs` processes) and report."""
+    from rfc.dse.plots import write_figures
+    from rfc.dse.report import render
 
     def fill(staging: Path) -> None:
         (staging / "results.json").write_text(json.dumps(document(result), indent=1) + "\n")
@@ -31,7 +36,7 @@ def write_sweep(result: SweepResult, checks: Sequence[Check], directory: Path) -
         if result.resources:
             (staging / "resources.csv").write_text(resources_csv(result))
             (staging / "table3.md").write_text(table3_markdown(result))
-        figures = write_figures(result, staging)
+        figures = write_figures(result, staging, jobs)
         (staging / "report.html").write_text(render(result, figures), encoding="utf-8")
         if checks:
             verified = [check.as_dict() for check in checks]

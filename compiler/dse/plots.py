@@ -9,6 +9,9 @@ from __future__ import annotations
 
 import textwrap
 from collections.abc import Callable
+from concurrent.futures import ProcessPoolExecutor
+from functools import partial
+from multiprocessing import get_context
 from pathlib import Path
 
 import matplotlib
@@ -208,16 +211,28 @@ FIGURES: dict[str, Callable[[SweepResult], Figure]] = {
 }
 
 
-def write_figures(result: SweepResult, directory: Path) -> list[str]:
-    """Save every figure as PNG and SVG into `directory`; return their base names."""
-    plt.rcParams["svg.hashsalt"] = "rfc-dse"
-    names = []
-    for name, draw in FIGURES.items():
-        figure = draw(result)
-        figure.suptitle(textwrap.fill(CAPTIONS[name], 80), fontsize=10)
-        figure.tight_layout()
-        figure.savefig(directory / f"{name}.png", dpi=110, metadata={"Software": None})
-        figure.savefig(directory / f"{name}.svg", metadata={"Date": None})
-        plt.close(figure)
-        names.append(name)
+def write_figures(result: SweepResult, directory: Path, jobs: int = 1) -> list[str]:
+    """Save every figure as PNG and SVG into `directory`; return their base names.
+
+    With `jobs` > 1 the figures are drawn in that many forked processes (drawing text is most of
+    a small sweep's time; forked workers have matplotlib imported already).
+    """
+    names = list(FIGURES)
+    write = partial(_write_figure, result, directory)
+    if jobs > 1:
+        with ProcessPoolExecutor(min(jobs, len(names)), mp_context=get_context("fork")) as pool:
+            list(pool.map(write, names))
+    else:
+        for name in names:
+            write(name)
     return names
+
+
+def _write_figure(result: SweepResult, directory: Path, name: str) -> None:
+    plt.rcParams["svg.hashsalt"] = "rfc-dse"
+    figure = FIGURES[name](result)
+    figure.suptitle(textwrap.fill(CAPTIONS[name], 80), fontsize=10)
+    figure.tight_layout()
+    figure.savefig(directory / f"{name}.png", dpi=110, metadata={"Software": None})
+    figure.savefig(directory / f"{name}.svg", metadata={"Date": None})
+    plt.close(figure)

@@ -14,7 +14,7 @@ import numpy as np
 import numpy.typing as npt
 
 from rfc.dse.datasets import SIZES, Dataset, Traffic, dataset, draw
-from rfc.dse.engine import Task, chunks, counter_bits, run_tasks
+from rfc.dse.engine import Task, TasksFailedError, chunks, counter_bits, run_tasks
 from rfc.dse.kernel import COLUMN, METRICS
 from rfc.dse.metrics import Summary, summarize
 from rfc.lib.schedulers.spec import Algorithm, SchedulerSpec
@@ -102,11 +102,17 @@ class Resources:
 
 @dataclass(frozen=True)
 class SweepResult:
-    """Every point of a plan, and the resources of each algorithm at each N."""
+    """Every point of a plan, and the resources of each algorithm at each N.
+
+    Attributes:
+        failures: Tasks that raised on a cluster (their points are left out), as
+            "scheduler N=.. dataset replicates a-b: error".
+    """
 
     plan: Plan
     points: tuple[Point, ...]
     resources: tuple[Resources, ...]
+    failures: tuple[str, ...] = ()
 
     def point(self, dataset_name: str, scheduler: str, n: int) -> Point | None:
         """The point simulated for these, if any."""
@@ -162,13 +168,22 @@ def run_sweep(
     *,
     synthesis: bool = True,
     advance: Callable[[float], None] | None = None,
+    cluster: str | None = None,
 ) -> SweepResult:
-    """Simulate every point of `plan` on `jobs` processes, then gather the resources."""
+    """Simulate every point of `plan` on `jobs` processes (or a Dask cluster), then resources.
+
+    On a cluster, the points whose tasks failed are left out and named in `failures`.
+    """
     tasks, info = tasks_of(plan)
-    rows = run_tasks(tasks, jobs, advance)
+    failures: tuple[str, ...] = ()
+    try:
+        rows = run_tasks(tasks, jobs, advance, cluster)
+    except TasksFailedError as failed:
+        rows, failures = failed.rows, tuple(failed.failures)
     points = tuple(
         Point(name, scheduler, n, *info[name, scheduler, n], rows[name, scheduler, n])
         for (name, scheduler, n) in info
+        if (name, scheduler, n) in rows
     )
     resources = synthesized_resources(plan.sizes, jobs) if synthesis else ()
-    return SweepResult(plan, points, resources)
+    return SweepResult(plan, points, resources, failures)

@@ -3,33 +3,23 @@
 A lowering is a function ``(design, options) -> artifacts`` (it may also yield
 `ReportSection`s: figures for report.md). To add an artifact kind (VHDL,
 tcl, the runtime's configuration...), write one such function in its own module and add it to
-`LOWERINGS`. `lower` runs them all in memory, then the report counts their lines; only then
-does `rfc.lower.writer` put anything on disk, so an error leaves nothing half-written.
+`LOWERINGS` (in `rfc.lower.lowerings`). `lower` runs them all in memory, then the report counts
+their lines; only then does `rfc.lower.writer` put anything on disk, so an error leaves nothing
+half-written.
+
+`lower` and `LOWERINGS` are imported on first use, so that `rfc.lower.writer` alone (the DSE
+writes its results with it) does not import every generator of the logic.
 """
 
 from __future__ import annotations
 
-from rfc.ir.model import Design
-from rfc.lower.artifacts import Artifact, BuildOptions, Lowering, ReportSection
-from rfc.lower.hardware import hardware
-from rfc.lower.hls_headers import hls_headers
-from rfc.lower.model import holistic_model
-from rfc.lower.node import processor_node
-from rfc.lower.report import build_report
-
-#: Every lowering, in the order their artifacts are listed in the report.
-LOWERINGS: tuple[Lowering, ...] = (holistic_model, hardware, hls_headers, processor_node)
+from typing import Any
 
 
-def lower(design: Design, options: BuildOptions, spec_text: str) -> tuple[Artifact, ...]:
-    """Produce every artifact of the design, then the report about them.
+def __getattr__(name: str) -> Any:
+    """Import the lowerings on first use of `lower` or `LOWERINGS`."""
+    if name in ("LOWERINGS", "lower"):
+        from rfc.lower import lowerings
 
-    Args:
-        design: The holistic model (stage DERIVED).
-        options: What to build.
-        spec_text: The spec's text, for the report's line count.
-    """
-    produced = [item for lowering in LOWERINGS for item in lowering(design, options)]
-    artifacts = tuple(a for a in produced if isinstance(a, Artifact))
-    sections = tuple(s for s in produced if isinstance(s, ReportSection))
-    return (*artifacts, build_report(design, spec_text, artifacts, sections))
+        return getattr(lowerings, name)
+    raise AttributeError(f"module 'rfc.lower' has no attribute '{name}'")

@@ -28,7 +28,7 @@ from rfc.ir.model import (
     Direction,
     Stage,
 )
-from rfc.lib.converters.buffers import Buffer, buffers_of
+from rfc.lib.converters.buffer_sizes import Buffer, buffers_of
 from rfc.lib.converters.plan import plan
 from rfc.lib.converters.ports import Direction as PinDirection
 from rfc.lib.converters.ports import Port, PortRole, Side, accelerator_signature, ports_of

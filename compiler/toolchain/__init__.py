@@ -3,36 +3,40 @@
 Every generated block goes through the same path — MyHDL → VHDL (and Verilog), GHDL analysis,
 Yosys `synth_xilinx` on the Verilog for LUT/FF figures, cocotb on GHDL for
 co-simulation — so the converters, schedulers and whole systems share these functions.
+
+Each name is imported from its module on first use: cocotb and MyHDL take most of a second to
+import, which `rfc check` and `rfc --help` need not pay.
 """
 
-from rfc.toolchain.cocotb_sim import CosimError, run_cocotb
-from rfc.toolchain.convert import convert_myhdl, start_new_design
-from rfc.toolchain.ghdl import (
-    GhdlError,
-    VhdlEntity,
-    VhdlPort,
-    analyze,
-    read_entities,
-    simulate,
-    synthesize_verilog,
-    synthesize_vhdl,
-)
-from rfc.toolchain.yosys import Resources, estimate_resources, module_resources
+from __future__ import annotations
 
-__all__ = [
-    "CosimError",
-    "GhdlError",
-    "Resources",
-    "VhdlEntity",
-    "VhdlPort",
-    "analyze",
-    "convert_myhdl",
-    "estimate_resources",
-    "module_resources",
-    "read_entities",
-    "run_cocotb",
-    "simulate",
-    "start_new_design",
-    "synthesize_verilog",
-    "synthesize_vhdl",
-]
+from importlib import import_module
+from typing import Any
+
+#: Every name this package offers, and the module that defines it.
+_MODULES = {
+    "CosimError": "cocotb_sim",
+    "run_cocotb": "cocotb_sim",
+    "convert_myhdl": "convert",
+    "start_new_design": "convert",
+    "GhdlError": "ghdl",
+    "VhdlEntity": "ghdl",
+    "VhdlPort": "ghdl",
+    "analyze": "ghdl",
+    "read_entities": "ghdl",
+    "simulate": "ghdl",
+    "synthesize_verilog": "ghdl",
+    "synthesize_vhdl": "ghdl",
+    "Resources": "yosys",
+    "estimate_resources": "yosys",
+    "module_resources": "yosys",
+}
+
+__all__ = sorted(_MODULES)
+
+
+def __getattr__(name: str) -> Any:
+    """Import the module defining `name` on first use."""
+    if name in _MODULES:
+        return getattr(import_module(f"rfc.toolchain.{_MODULES[name]}"), name)
+    raise AttributeError(f"module 'rfc.toolchain' has no attribute '{name}'")

@@ -10,85 +10,28 @@ on each sub-stream and element channel, sized from the plan's maxima to hold one
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-from math import prod
 from typing import Any
 
 from myhdl import ConcatSignal, Signal, always_comb, block, intbv
 
+from rfc.lib.converters.buffer_sizes import DATA_ROLES, Buffer, buffers_of, element_ports
 from rfc.lib.converters.fifo import fifo
-from rfc.lib.converters.ports import Port, PortRole, Side, dma_ports, ports_of
+from rfc.lib.converters.ports import Port, Side, dma_ports, ports_of
 from rfc.lib.converters.publisher import rfc_publisher
-from rfc.lib.converters.steps import Loop, Payload, Plan
+from rfc.lib.converters.steps import Plan
 from rfc.lib.converters.toplevel import port_signals
 
-#: The roles of the ports that carry data (not handshakes).
-DATA_ROLES = (PortRole.FIELD, PortRole.LENGTH, PortRole.COUNT)
-
-
-@dataclass(frozen=True)
-class Buffer:
-    """One FIFO in front of a publisher (or the whole-frame buffer of a subscriber's guard).
-
-    Attributes:
-        channel: The sub-stream or element channel it holds.
-        path: The field's dotted path, as the project's maxima name it.
-        words: Its memory's depth: one message's worth (the FIFO's output register holds one
-            more).
-        bits: Bits per word.
-    """
-
-    channel: str
-    path: str
-    words: int
-    bits: int
-
-    @property
-    def size_bits(self) -> int:
-        """Its memory in bits."""
-        return self.words * self.bits
-
-
-def buffers_of(plan: Plan) -> tuple[Buffer, ...]:
-    """The FIFOs a publisher of `plan` needs (none when it takes no strings or sequences)."""
-    ports = ports_of(plan, Side.PUBLISHER)
-    # the channels of sequences of strings: each string's maximum is keyed ``path[]``
-    string_loops = {
-        s.element_channel for s in plan.steps if isinstance(s, Loop) and s.field.element is None
-    }
-    found = []
-    for step in plan.steps:
-        if isinstance(step, Payload) and step.stream:
-            bits = next(p.bits for p in ports if p.name == f"{step.stream}_tdata")
-            beats = -(-step.maximum * step.element_size // (bits // 8))
-            path = step.path + ("[]" if step.channel in string_loops else "")
-            found.append(Buffer(step.stream, path, _instances(plan, step.channel) * beats, bits))
-        elif isinstance(step, Loop) and step.count_port:
-            name = plan.channels[step.element_channel].name
-            bits = _word_bits([p.bits for p in _element_ports(ports, name)])
-            count = _instances(plan, step.element_channel)
-            found.append(Buffer(name, step.path, count, bits))
-    return tuple(found)
-
-
-def _instances(plan: Plan, channel: int) -> int:
-    """How many times the steps of a channel can run per message: its loops' maxima."""
-    counts = []
-    while channel:
-        loop = next(s for s in plan.steps if isinstance(s, Loop) and s.element_channel == channel)
-        counts.append(loop.maximum)
-        channel = loop.channel
-    return prod(counts)
-
-
-def _element_ports(ports: tuple[Port, ...], channel: str) -> list[Port]:
-    return [p for p in ports if p.group == channel and p.role in DATA_ROLES]
-
-
-def _word_bits(parts: list[int]) -> int:
-    """Bits of the FIFO word of an element channel, as `stream_buffers` packs it."""
-    parts = parts or [1]  # no data: a constant bit
-    return sum(parts) + (1 if len(parts) == 1 else 0)  # one part: padded, see below
+# the sizes are reexported: the system's lowering takes both from here
+__all__ = [
+    "DATA_ROLES",
+    "Buffer",
+    "buffered_ports",
+    "buffered_publisher",
+    "buffers_of",
+    "split",
+    "split_bit",
+    "stream_buffers",
+]
 
 
 @block
@@ -133,7 +76,7 @@ def stream_buffers(
                      publisher[f"{name}_tvalid"], publisher[f"{name}_tready"], buffer.words)
             )  # fmt: skip
             continue
-        data = [p.name for p in _element_ports(ports, name)]
+        data = [p.name for p in element_ports(ports, name)]
         # One word per element (a lone bool padded: ConcatSignal needs two parts).
         parts = [producer[p] for p in reversed(data)] or [intbv(0)[1:]]
         word_in = ConcatSignal(intbv(0)[1:], *parts) if len(parts) == 1 else ConcatSignal(*parts)

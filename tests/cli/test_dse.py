@@ -18,6 +18,7 @@ from rfc.dse.kernel import METRICS
 from rfc.dse.plots import FIGURES
 from rfc.dse.sweep import ALGORITHMS, COMBINATIONS
 from tests.support.cli import run_rfc
+from tests.support.dask_cluster import dask_scheduler  # noqa: F401 (a fixture)
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 HUB = EXAMPLES / "sensor_hub" / "SensorHub.yaml"
@@ -204,3 +205,17 @@ def test_dse_spec_shows_progress_at_a_terminal_unless_json(as_json):
         assert json.loads(output)["cycles"] == 2000  # nothing but the document on the terminal
     else:
         assert "simulating candidates" in output
+
+
+def test_a_sweep_on_a_dask_cluster_gives_the_serial_document(tmp_path, dask_scheduler):  # noqa: F811
+    args = ("dse", "--n", "4", "--dataset", "cc2", "--replicates", "3", "--no-synth", "--json")
+    serial = run_rfc(*args, "--jobs", "1", "-o", tmp_path / "serial")
+    clustered = run_rfc(*args, "--cluster", dask_scheduler, "-o", tmp_path / "cluster")
+    assert clustered.returncode == 0, clustered.stderr
+    documents = [json.loads(r.stdout) for r in (serial, clustered)]
+    for document in documents:
+        del document["output"]
+    assert documents[0] == documents[1]
+    assert (tmp_path / "cluster" / "results.csv").read_bytes() == (
+        tmp_path / "serial" / "results.csv"
+    ).read_bytes()

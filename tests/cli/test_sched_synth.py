@@ -7,6 +7,7 @@ import json
 import pytest
 
 from tests.support.cli import run_rfc
+from tests.support.dask_cluster import dask_scheduler  # noqa: F401 (a fixture)
 
 
 @pytest.fixture(scope="module")
@@ -97,3 +98,21 @@ def test_output_that_is_a_file_or_a_users_directory_is_refused_before_synthesis(
         assert "Traceback" not in result.stderr
     assert (tmp_path / "file.txt").read_text() == "mine"
     assert [p.name for p in (tmp_path / "mine").iterdir()] == ["notes.txt"]
+
+
+def test_a_list_of_n_on_a_dask_cluster_gives_the_serial_reports(dask_scheduler):  # noqa: F811
+    args = ("sched", "synth", "-a", "NPFP", "--n", "3,2", "--no-cache", "--json")
+    serial = run_rfc(*args)
+    clustered = run_rfc(*args, "--cluster", dask_scheduler)
+    assert clustered.returncode == 0, clustered.stderr
+    reports = json.loads(clustered.stdout)
+    assert reports == json.loads(serial.stdout)
+    assert [r["n"] for r in reports] == [2, 3]
+    assert reports[0] == synth_json("-a", "NPFP", "--n", "2", "--no-cache")
+
+
+def test_output_with_a_list_of_n_is_refused(tmp_path):
+    result = run_rfc("sched", "synth", "-a", "LRU", "--n", "2,4", "-o", tmp_path / "hdl")
+    assert result.returncode == 1
+    assert "--output writes one scheduler's VHDL and Verilog; --n gives several" in result.stderr
+    assert not (tmp_path / "hdl").exists()

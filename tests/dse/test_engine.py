@@ -7,9 +7,10 @@ import pytest
 
 from rfc.dse import engine
 from rfc.dse.datasets import DATASETS, draw
-from rfc.dse.engine import chunks, counter_bits, run_tasks, simulate
+from rfc.dse.engine import TasksFailedError, chunks, counter_bits, run_tasks, simulate
 from rfc.dse.sweep import COMBINATIONS, Plan, tasks_of
 from rfc.lib.schedulers.spec import default_counter_bits
+from tests.support.dask_cluster import dask_scheduler  # noqa: F401 (a fixture)
 
 
 def test_counters_are_widened_beyond_the_run():
@@ -48,3 +49,31 @@ def test_the_plan_adds_figure_14_at_the_largest_n_of_the_first_dataset():
     combined = {key for key in info if key[1] in COMBINATIONS}
     assert combined == {("cc1", name, 8) for name in COMBINATIONS}
     assert len(info) == 2 * 2 * 6 + 3
+
+
+def test_tasks_on_a_dask_cluster_equal_one_process(monkeypatch, dask_scheduler):  # noqa: F811
+    monkeypatch.setattr(engine, "CHUNK", 2)
+    drawn = draw(DATASETS["cc1"], 4, 5)
+    tasks = chunks(("cc1", "LOEDF", 4), "LOEDF", drawn, 800) + chunks(
+        ("cc1", "LRU(LOEDF,LST)", 4), "LRU(LOEDF,LST)", drawn, 800
+    )
+    shares = []
+    clustered = run_tasks(tasks, jobs=1, advance=shares.append, cluster=dask_scheduler)
+    assert sum(shares) == pytest.approx(1.0)
+    serial = run_tasks(tasks, jobs=1)
+    assert clustered.keys() == serial.keys()
+    for key, rows in serial.items():
+        assert np.array_equal(rows, clustered[key], equal_nan=True)
+
+
+def test_a_failing_task_on_the_cluster_is_named_and_the_other_points_kept(dask_scheduler):  # noqa: F811
+    drawn = draw(DATASETS["cc1"], 4, 2)
+    tasks = chunks(("cc1", "LST", 4), "LST", drawn, 500) + chunks(
+        ("cc1", "EDF", 4), "EDF", drawn, 500
+    )
+    with pytest.raises(TasksFailedError) as failed:
+        run_tasks(tasks, jobs=1, cluster=dask_scheduler)
+    assert len(failed.value.failures) == 1
+    assert failed.value.failures[0].startswith("EDF N=4 cc1 replicates 0-1: RfcError")
+    assert np.array_equal(failed.value.rows["cc1", "LST", 4], simulate("LST", drawn, 500))
+    assert list(failed.value.rows) == [("cc1", "LST", 4)]

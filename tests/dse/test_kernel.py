@@ -8,6 +8,9 @@ what the compiled kernel (its own traffic, metrics folded per cycle) reports.
 from __future__ import annotations
 
 import math
+import os
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -15,7 +18,7 @@ import pytest
 from rfc.dse.channel import measure
 from rfc.dse.datasets import DATASETS, Traffic, draw
 from rfc.dse.engine import build_tree, counter_bits, simulate, structure
-from rfc.dse.kernel import COLUMN, METRICS
+from rfc.dse.kernel import COLUMN, METRICS, compiled
 from rfc.dse.trace import record
 from rfc.lib.schedulers.model.scheduler import SchedulerModel
 from rfc.lib.schedulers.model.traffic import Publishers
@@ -80,3 +83,14 @@ def test_the_kernel_equals_the_oracle_on_the_model_api(scheduler, name, n):
         expected = measure(run.request, run.last, run.grant, one.deadline[0])
         assert np.array_equal(rows[r], expected, equal_nan=True), (scheduler, r)
     assert rows[:, COLUMN["messages"]].min() > 0
+
+
+def test_the_kernel_counts_as_compiled_only_when_numbas_cache_holds_it(tmp_path):
+    probe = "from rfc.dse.kernel import compiled; print(compiled())"
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)}
+    empty = subprocess.run(
+        [sys.executable, "-c", probe], env=env, capture_output=True, text=True, check=True
+    )
+    assert empty.stdout.split() == ["False"]
+    simulate("LRU", draw(DATASETS["cc1"], 2, 1), 10)  # this process: the suite's own cache
+    assert compiled()

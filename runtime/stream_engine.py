@@ -26,8 +26,9 @@ from rfc.lib.converters.malformed import DROP_REASONS, status_port
 from rfc.messages.rosbags_adapter import BagMessage
 from rfc.runtime.arrivals import IDLE_FRACTION, ArrivalClock
 from rfc.runtime.core import Published, Runtime
+from rfc.runtime.plan import ToTopic
 from rfc.runtime.protocol import Chunk
-from rfc.runtime.stall import StallWatch, largest_output, pending_work
+from rfc.runtime.stall import AnswerWait, StallWatch, largest_output, pending_work
 from rfc.toolchain.verilator import build_stream_engine
 
 #: Cycles the engine spends in and out of reset before the drivers start (as the cocotb harness).
@@ -35,8 +36,10 @@ RESET_CYCLES = 6
 #: Length of the repeated idle/backpressure pattern.
 PATTERN_LENGTH = 1021
 
-_STEP = struct.Struct("<QBI")
-_SENT, _RECEIVED, _RECEIVING = 1, 2, 4
+_STEP = struct.Struct("<QBQI")
+_FRAME = struct.Struct("<QI")
+#: What `StreamEngine.run` stops at, and the flags of its answer.
+SENT, RECEIVED, _RECEIVING = 1, 2, 4
 
 
 def pause_pattern(seed: int) -> bytes:
@@ -65,11 +68,18 @@ class VerilogTop(Protocol):
 
 @dataclass(frozen=True)
 class Step:
-    """What the engine reports after running: cycles run, completions, the state of streams."""
+    """What the engine reports after running.
+
+    Attributes:
+        cycles: Cycles run.
+        sent_at: The cycle of the run (from 1) at which the PS→PL transfer completed, or None.
+        received: The PL→PS transfers that completed, each with the cycle of the run it did.
+        receiving: Whether a PL→PS transfer is under way.
+    """
 
     cycles: int
-    sent: bool
-    received: bytes | None
+    sent_at: int | None
+    received: tuple[tuple[int, bytes], ...]
     receiving: bool
 
 
@@ -90,22 +100,30 @@ class StreamEngine:
         self._in = self._process.stdin
         self._out = self._process.stdout
         pattern = pause_pattern(seed)
-        self._in.write(struct.pack("<I", len(pattern)) + pattern)
+        self._pending = bytearray(struct.pack("<I", len(pattern)) + pattern)
 
     def send(self, transfer: bytes) -> None:
-        """Queue one PS→PL transfer."""
-        self._in.write(b"S" + struct.pack("<I", len(transfer)) + transfer)
+        """Queue one PS→PL transfer (written with the next command)."""
+        self._pending += b"S" + struct.pack("<I", len(transfer)) + transfer
 
-    def run(self, cycles: int) -> Step:
-        """Run at most `cycles` cycles, stopping after one in which a transfer completed."""
-        self._in.write(b"R" + struct.pack("<Q", cycles))
-        ran, flags, size = _STEP.unpack(self._read(_STEP.size))
-        frame = self._read(size) if flags & _RECEIVED else None
-        return Step(ran, bool(flags & _SENT), frame, bool(flags & _RECEIVING))
+    def run(self, cycles: int, stop: int) -> Step:
+        """Run at most `cycles` cycles, or until a transfer of a kind `stop` names completes.
+
+        Args:
+            cycles: The most cycles to run.
+            stop: `SENT` (the PS→PL transfer), `RECEIVED` (a PL→PS transfer), both or 0.
+        """
+        self._write(b"R" + struct.pack("<QB", cycles, stop))
+        ran, flags, sent_at, count = _STEP.unpack(self._read(_STEP.size))
+        frames = []
+        for _ in range(count):
+            at, size = _FRAME.unpack(self._read(_FRAME.size))
+            frames.append((at, self._read(size)))
+        return Step(ran, sent_at if flags & SENT else None, tuple(frames), bool(flags & _RECEIVING))
 
     def finish(self) -> list[int]:
         """End the run; the status registers' values in the order the engine was built with."""
-        self._in.write(b"Q")
+        self._write(b"Q")
         (count,) = struct.unpack("<I", self._read(4))
         values = list(struct.unpack(f"<{count}Q", self._read(8 * count)))
         self._process.wait()
@@ -119,11 +137,19 @@ class StreamEngine:
         self._in.close()
         self._out.close()
 
+    def _write(self, command: bytes) -> None:
+        self._in.write(bytes(self._pending) + command)
+        self._pending.clear()
+
     def _read(self, size: int) -> bytes:
-        data = self._out.read(size) if size else b""
-        if len(data) != size:
-            raise EngineError(f"the stream engine ended early (exit status {self._process.poll()})")
-        return data
+        data = bytearray()
+        while len(data) < size:  # a pipe hands over large transfers in parts
+            part = self._out.read(size - len(data))
+            if not part:
+                status = self._process.poll()
+                raise EngineError(f"the stream engine ended early (exit status {status})")
+            data += part
+        return bytes(data)
 
 
 class EngineError(RuntimeError):
@@ -161,6 +187,13 @@ class EngineReplay:
         self.sending: Chunk | None = None
         self.receiving = False
         self.watch = StallWatch(stall_cycles, lanes, largest_output(runtime))
+        self.answer = AnswerWait(lanes)
+        # whether a PL→PS transfer may cause a PS→PL one (through software, or directly)
+        self.feedback = any(
+            not isinstance(route, ToTopic)
+            for routes in runtime.plan.logic_outputs.values()
+            for route in routes
+        )
 
     def replay(
         self, messages: Iterable[BagMessage], progress: Callable[[int], None] | None = None
@@ -191,27 +224,38 @@ class EngineReplay:
         while self.cycle < due:
             received = self._run(min(self.drain_cycles, due - self.cycle))
             busy = self._busy()
-            if not busy and not received:
+            if not busy and not received and not self.answer.awaiting(self.cycle):
                 return
             sending = self.sending.size if self.sending is not None else 0
             self.watch.check(self.cycle, busy, self._pending, sending, self.receiving)
 
     def _run(self, cycles: int) -> bool:
-        """Run `cycles` cycles, answering every completed transfer; whether any PL→PS did."""
+        """Run `cycles` cycles, answering every completed transfer; whether any PL→PS did.
+
+        The engine stops when the PS→PL transfer completes only while another waits, and when
+        a PL→PS transfer completes only if what it carries may come back to the logic: other
+        transfers are answered in order when it stops.
+        """
         received = False
         while cycles > 0:
-            step = self.engine.run(cycles)
+            stop = (SENT if self.runtime.waiting() else 0) | (RECEIVED if self.feedback else 0)
+            step = self.engine.run(cycles, stop)
+            events = [(at, None) for at in (step.sent_at,) if at is not None]
+            for at, data in sorted([*events, *step.received], key=lambda event: event[0]):
+                if data is None:
+                    assert self.sending is not None
+                    self.watch.completed(self.cycle + at, self.sending.size)
+                    self.answer.sent(self.cycle + at, self.sending.size)
+                    self.sending = None
+                else:
+                    received = True
+                    self.watch.completed(self.cycle + at, len(data))
+                    self.answer.answered()
+                    now = self.cycle + at
+                    self.published += self.runtime.receive(data, self.stamp, now)
             cycles -= step.cycles
             self.cycle += step.cycles
             self.receiving = step.receiving
-            if step.sent:
-                assert self.sending is not None
-                self.watch.completed(self.cycle, self.sending.size)
-                self.sending = None
-            if step.received is not None:
-                received = True
-                self.watch.completed(self.cycle, len(step.received))
-                self.published += self.runtime.receive(step.received, self.stamp, self.cycle)
             self._send_next()
         return received
 

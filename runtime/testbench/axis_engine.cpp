@@ -7,11 +7,12 @@
 //
 // Interactive mode (default), little-endian binary on stdin/stdout:
 //   'S' u32 n, n bytes   queue one PS->PL transfer
-//   'R' u64 n            run at most n cycles, stopping after a cycle in which a transfer
-//                        completed; answers u64 cycles run, u8 flags (1: the PS->PL transfer
-//                        completed, 2: a PL->PS transfer completed, 4: a PL->PS transfer is
-//                        under way), u32 n, n bytes (the completed PL->PS transfer,
-//                        the bytes whose tkeep is set)
+//   'R' u64 n, u8 stop   run at most n cycles, stopping after a cycle in which a transfer
+//                        completed that `stop` names (1: PS->PL, 2: PL->PS); answers u64 cycles
+//                        run, u8 flags (1: the PS->PL transfer completed, 4: a PL->PS transfer
+//                        is under way), u64 the cycle it completed at (counted from 1 in this
+//                        run), u32 k, then k completed PL->PS transfers as u64 cycle, u32 n,
+//                        n bytes (those whose tkeep is set)
 //   'Q'                  answer u32 k and the k status registers as u64, then exit
 // Batch mode (--batch), the plain testbench without Python: 'S' as above, 'W' u64 n runs n
 // cycles without stopping; every completed PL->PS transfer is written as u32 n, n bytes; at the
@@ -21,6 +22,7 @@
 #include <cstring>
 #include <deque>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "Vdut.h"
@@ -174,22 +176,34 @@ void write_transfer(const std::vector<uint8_t>& bytes) {
 }
 
 void interactive(Streams& streams) {
+  std::vector<std::pair<uint64_t, std::vector<uint8_t>>> frames;
   for (;;) {
     char command = read_value<char>();
     if (command == 'S') {
       streams.queue(read_transfer());
     } else if (command == 'R') {
       auto most = read_value<uint64_t>();
+      auto stop = read_value<uint8_t>();
       uint64_t ran = 0;
-      int done = 0;
-      while (ran < most && done == 0) {
-        done = streams.cycle();
+      uint64_t sent_at = 0;
+      frames.clear();
+      while (ran < most) {
+        int done = streams.cycle();
         ++ran;
+        if (done & 1) sent_at = ran;
+        if (done & 2) frames.emplace_back(ran, streams.completed());
+        if (done & stop) break;
       }
-      uint8_t flags = uint8_t(done | (streams.receiving() ? 4 : 0));
+      uint8_t flags = uint8_t((sent_at ? 1 : 0) | (streams.receiving() ? 4 : 0));
+      uint32_t count = uint32_t(frames.size());
       write_exact(&ran, sizeof ran);
       write_exact(&flags, sizeof flags);
-      write_transfer((done & 2) ? streams.completed() : std::vector<uint8_t>{});
+      write_exact(&sent_at, sizeof sent_at);
+      write_exact(&count, sizeof count);
+      for (const auto& [at, bytes] : frames) {
+        write_exact(&at, sizeof at);
+        write_transfer(bytes);
+      }
       std::fflush(stdout);
     } else if (command == 'Q') {
       streams.report_status();

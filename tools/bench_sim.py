@@ -11,6 +11,10 @@ LARGE messages) go
     of transfers; GHDL runs ``runtime/testbench/axis_plain_tb.vhd``, which reads them with
     textio (analysis and elaboration are not timed).
 
+On Verilator, (c) the cocotb harness rfc sim used before the C++ testbench (cocotbext-axi
+driving the streams beat by beat, `simulate_with_ghdl(..., simulator="verilator")` in process,
+on SMALL and LARGE_GHDL messages) gives the speed-up over it.
+
 The plain testbench gets the very transfers `rfc sim` sends, at the very cycles it sends them,
 with the same idle/backpressure pattern, and runs as many cycles (recorded by an in-process
 replay), so both simulate the same work. The marginal cost of a message is
@@ -41,8 +45,14 @@ sys.path.insert(0, str(ROOT))
 from rfc.driver import compile_spec  # noqa: E402
 from rfc.lower.hardware import simulation_top  # noqa: E402
 from rfc.lower.runtime_plan import DesignPlan  # noqa: E402
-from rfc.messages.rosbags_adapter import message_types, read_bag, write_bag  # noqa: E402
-from rfc.runtime.core import Published, Queued, Runtime  # noqa: E402
+from rfc.messages.rosbags_adapter import (  # noqa: E402
+    bag_topics,
+    message_types,
+    read_bag,
+    write_bag,
+)
+from rfc.runtime.core import Published, QueueConfig, Queued, Runtime  # noqa: E402
+from rfc.runtime.hardware import SimulationTop, simulate_with_ghdl  # noqa: E402
 from rfc.runtime.protocol import HEADER_SIZE, Chunk  # noqa: E402
 from rfc.runtime.stall import DEFAULT_STALL_CYCLES  # noqa: E402
 from rfc.runtime.stream_engine import (  # noqa: E402
@@ -248,10 +258,29 @@ class Plain:
         return elapsed, frames
 
 
+def cocotb_harness(spec: Path, bag: Path, folder: Path, top: SimulationTop) -> float:
+    """Wall time of the replay through the cocotb harness on Verilator."""
+    design = compile_spec(spec)
+    types = message_types("ros2", bags=(str(bag),))
+    topics = {topic: topic for topic in bag_topics(bag, types)}
+    start = time.perf_counter()
+    simulate_with_ghdl(
+        design, bag, topics, top, folder, queues=QueueConfig(), drain_cycles=DRAIN, seed=SEED,
+        simulator="verilator",
+    )  # fmt: skip
+    return time.perf_counter() - start
+
+
 def measure(
-    name: str, spec: Path, bags: dict[int, Path], simulator: str, folder: Path, plain: Plain
+    name: str,
+    spec: Path,
+    bags: dict[int, Path],
+    simulator: str,
+    folder: Path,
+    plain: Plain,
+    before: dict[int, Path],
 ) -> tuple[str, ...]:
-    """One row: both bag sizes through rfc sim and through the plain testbench."""
+    """One row: both bag sizes through rfc sim and the plain testbench (and the old harness)."""
     small, large = sorted(bags)
     rfc_sim(spec, bags[small], folder / "warm.mcap", simulator)  # caches, page cache
     sim = {n: rfc_sim(spec, bag, folder / f"out{n}.mcap", simulator) for n, bag in bags.items()}
@@ -265,6 +294,16 @@ def measure(
             raise SystemExit(f"{name}: the plain testbench's outputs are not rfc sim's")
     per_sim = (sim[large] - sim[small]) / (large - small)
     per_plain = (bare[large] - bare[small]) / (large - small)
+    speedup = "—"
+    if simulator == "verilator":
+        few, many = sorted(before)
+        cocotb_harness(spec, before[few], folder / "warm-cocotb", plain.top)
+        old = {
+            n: cocotb_harness(spec, bag, folder / f"cocotb{n}", plain.top)
+            for n, bag in before.items()
+        }
+        per_old = (old[many] - old[few]) / (many - few)
+        speedup = f"{1000 * per_old:.2f} ms: {per_old / per_sim:.0f}x"
     return (
         name,
         simulator,
@@ -273,6 +312,7 @@ def measure(
         f"{1000 * per_plain:.3f} ms",
         f"{per_sim / per_plain:.1f}x",
         f"{1 / per_sim:,.0f}",
+        speedup,
     )
 
 
@@ -296,18 +336,24 @@ def main() -> None:
         }
         for system in args.systems:
             plain = Plain(specs[system], folder / system)
+            bags = {}
+            for count in {args.small, args.large_ghdl, args.large_verilator}:
+                bags[count] = folder / f"{system}{count}.mcap"
+                if system == "quaternion":
+                    orientations_bag(bags[count], count)
+                else:
+                    odometry_bag(bags[count], count, args.bag)
+            before = {n: bags[n] for n in (args.small, args.large_ghdl)}
             for simulator in args.simulators:
                 large = args.large_ghdl if simulator == "ghdl" else args.large_verilator
-                bags = {}
-                for count in (args.small, large):
-                    bags[count] = folder / f"{system}{count}.mcap"
-                    if system == "quaternion":
-                        orientations_bag(bags[count], count)
-                    else:
-                        odometry_bag(bags[count], count, args.bag)
-                rows.append(measure(system, specs[system], bags, simulator, folder, plain))
-    print("| system | simulator | bags | rfc sim | plain testbench | ratio | rfc sim msg/s |")
-    print("|---|---|---|---:|---:|---:|---:|")
+                chosen = {n: bags[n] for n in (args.small, large)}
+                row = measure(system, specs[system], chosen, simulator, folder, plain, before)
+                rows.append(row)
+    print(
+        "| system | simulator | bags | rfc sim | plain testbench | ratio | rfc sim msg/s "
+        "| cocotb harness: rfc sim's speed-up |"
+    )
+    print("|---|---|---|---:|---:|---:|---:|---:|")
     for row in rows:
         print("| " + " | ".join(row) + " |")
 

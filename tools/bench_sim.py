@@ -263,6 +263,7 @@ def cocotb_harness(spec: Path, bag: Path, folder: Path, top: SimulationTop) -> f
     design = compile_spec(spec)
     types = message_types("ros2", bags=(str(bag),))
     topics = {topic: topic for topic in bag_topics(bag, types)}
+    folder.mkdir(parents=True, exist_ok=True)
     start = time.perf_counter()
     simulate_with_ghdl(
         design, bag, topics, top, folder, queues=QueueConfig(), drain_cycles=DRAIN, seed=SEED,

@@ -4,11 +4,13 @@ The cocotb harness (`rfc.runtime.cosim`) runs Python on every clock cycle: its d
 beat at a time and cost far more than the logic itself. Here the testbench
 ``testbench/axis_engine.cpp`` (built by `rfc.toolchain.verilator.build_stream_engine`) moves the
 beats, idles the PS→PL stream and holds back the PL→PS stream with the same seeded pattern,
-and stops only when a transfer completes. The processor side — queues, software scheduler,
-reassembly, software accelerators, the account — stays in `Runtime`, called once per transfer,
-with the same rules as the cocotb harness: arrivals at their recorded times with idle skipped
-(`rfc.runtime.arrivals`), the stall watchdog (`rfc.runtime.stall`), outputs stamped with the
-newest input offered so far.
+and stops only when Python must act: when the PS→PL transfer completes while another message
+waits, or a PL→PS transfer completes whose message may come back to the logic; other
+transfers are handed over, with the cycle they completed at, when it stops. The processor
+side — queues, software scheduler, reassembly, software accelerators, the account — stays in
+`Runtime`, called once per transfer, with the same rules as the cocotb harness: arrivals at
+their recorded times with idle skipped (`rfc.runtime.arrivals`), the stall watchdog and the
+wait for answers (`rfc.runtime.stall`), outputs stamped with the newest input offered so far.
 """
 
 from __future__ import annotations
@@ -138,8 +140,10 @@ class StreamEngine:
         self._out.close()
 
     def _write(self, command: bytes) -> None:
-        self._in.write(bytes(self._pending) + command)
+        data = memoryview(bytes(self._pending) + command)
         self._pending.clear()
+        while data:  # a raw pipe may take a large transfer in parts
+            data = data[self._in.write(data) :]
 
     def _read(self, size: int) -> bytes:
         data = bytearray()

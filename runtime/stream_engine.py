@@ -284,6 +284,22 @@ class EngineReplay:
         return pending_work(self.runtime, self.sending, self.receiving)
 
 
+def build_engine(
+    top: VerilogTop, subscribers: Iterable[int]
+) -> tuple[Path, dict[str, tuple[int, str]]]:
+    """The stream engine of `top` (compiled once per content) and the drop counters it reads.
+
+    Raises:
+        VerilatorError: The engine cannot be built.
+    """
+    verilog = [Path(path) for path in top.verilog]
+    module = re.compile(rf"\bmodule\s+{re.escape(top.top)}\b")
+    top_text = next((t for p in verilog if module.search(t := p.read_text())), "")
+    registers = status_registers(subscribers, top_text)
+    binary = build_stream_engine(verilog, top.top, top.bus_width // 8, list(registers))
+    return binary, registers
+
+
 def simulate_with_engine(
     runtime: Runtime,
     messages: Iterable[BagMessage],
@@ -313,12 +329,8 @@ def simulate_with_engine(
         VerilatorError: The engine cannot be built.
         EngineError: The engine died.
     """
-    verilog = [Path(path) for path in top.verilog]
-    module = re.compile(rf"\bmodule\s+{re.escape(top.top)}\b")
-    top_text = next((t for p in verilog if module.search(t := p.read_text())), "")
-    registers = status_registers(runtime.plan.subscriber_names, top_text)
+    binary, registers = build_engine(top, runtime.plan.subscriber_names)
     lanes = top.bus_width // 8
-    binary = build_stream_engine(verilog, top.top, lanes, list(registers))
     engine = StreamEngine(binary, seed)
     try:
         clock_mhz = runtime.plan.design.project.clock_mhz

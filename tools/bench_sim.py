@@ -57,11 +57,11 @@ from rfc.runtime.protocol import HEADER_SIZE, Chunk  # noqa: E402
 from rfc.runtime.stall import DEFAULT_STALL_CYCLES  # noqa: E402
 from rfc.runtime.stream_engine import (  # noqa: E402
     RESET_CYCLES,
+    build_engine,
     pause_pattern,
     simulate_with_engine,
 )
 from rfc.toolchain.ghdl import STANDARD, analyze  # noqa: E402
-from rfc.toolchain.verilator import build_stream_engine  # noqa: E402
 
 QUATERNION = "geometry_msgs/msg/Quaternion"
 ODOMETRY = "nav_msgs/msg/Odometry"
@@ -216,7 +216,8 @@ class Plain:
 
     def __init__(self, spec: Path, folder: Path) -> None:
         self.folder = folder
-        self.top = simulation_top(compile_spec(spec), folder / "hdl")
+        self.design = compile_spec(spec)
+        self.top = simulation_top(self.design, folder / "hdl")
         self.lanes = self.top.bus_width // 8
         self._engine: Path | None = None
         self._ghdl_work: Path | None = None
@@ -224,7 +225,8 @@ class Plain:
     def verilator(self, stimulus: Stimulus) -> tuple[float, list[bytes]]:
         """Wall time of the C++ testbench and the transfers it received."""
         if self._engine is None:
-            self._engine = build_stream_engine(self.top.verilog, self.top.top, self.lanes, [])
+            subscribers = DesignPlan(self.design).subscriber_names
+            self._engine, _ = build_engine(self.top, subscribers)  # rfc sim's very binary
         commands = verilator_stimulus(stimulus)
         start = time.perf_counter()
         result = subprocess.run(

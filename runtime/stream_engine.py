@@ -33,6 +33,8 @@ from rfc.runtime.protocol import Chunk
 from rfc.runtime.stall import AnswerWait, StallWatch, largest_output, pending_work
 from rfc.toolchain.verilator import build_stream_engine
 
+#: The engine's C++ source.
+TESTBENCH = Path(__file__).resolve().parent / "testbench" / "axis_engine.cpp"
 #: Cycles the engine spends in and out of reset before the drivers start (as the cocotb harness).
 RESET_CYCLES = 6
 #: Length of the repeated idle/backpressure pattern.
@@ -296,7 +298,7 @@ def build_engine(
     module = re.compile(rf"\bmodule\s+{re.escape(top.top)}\b")
     top_text = next((t for p in verilog if module.search(t := p.read_text())), "")
     registers = status_registers(subscribers, top_text)
-    binary = build_stream_engine(verilog, top.top, top.bus_width // 8, list(registers))
+    binary = build_stream_engine(TESTBENCH, verilog, top.top, top.bus_width // 8, list(registers))
     return binary, registers
 
 

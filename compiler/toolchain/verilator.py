@@ -130,16 +130,13 @@ def run_testbench(
     return result.stdout
 
 
-#: The C++ testbench that drives a system's DMA streams (`rfc.runtime.stream_engine`).
-ENGINE_SOURCE = Path(__file__).resolve().parents[2] / "runtime" / "testbench" / "axis_engine.cpp"
-
-
 def build_stream_engine(
-    sources: Sequence[Path], top: str, lanes: int, status_ports: Sequence[str]
+    testbench: Path, sources: Sequence[Path], top: str, lanes: int, status_ports: Sequence[str]
 ) -> Path:
     """Compile the stream engine around the Verilog `top` (cached by content), return it.
 
     Args:
+        testbench: The engine's C++ source (`rfc.runtime.stream_engine`).
         sources: Verilog files of the logic in compile order.
         top: The system's top module (the ports of the system contract).
         lanes: Bytes per beat of the DMA streams.
@@ -153,7 +150,7 @@ def build_stream_engine(
     options = [*OPTIONS, "--cc", "--exe", "--build", "-O3", "--prefix", "Vdut"]
     options += ["--top-module", top, "-CFLAGS", "-O2"]
     digest = hashlib.sha256()
-    for part in (verilator_version(), *options, header, ENGINE_SOURCE.read_text()):
+    for part in (verilator_version(), *options, header, testbench.read_text()):
         digest.update(part.encode() + b"\n")
     for path in sources:
         for line in canonical_lines(Path(path).read_text()):
@@ -172,7 +169,7 @@ def build_stream_engine(
             f"-I{partial}",
             "-Mdir",
             str(partial),
-            str(ENGINE_SOURCE),
+            str(testbench),
             *map(str, sources),
         ]
         result = subprocess.run(command, capture_output=True, text=True, check=False)

@@ -9,7 +9,8 @@ each transfer to the runtime, which reassembles and routes it. Outputs of the lo
 stamp of the newest input offered so far.
 
 Idle time is skipped (`rfc.runtime.arrivals`): when nothing waits, nothing moves and the logic
-has been quiet for the job's drain window, the next message arrives at once. After the last
+has been quiet for the job's drain window (and is not still expected to answer a transfer,
+`rfc.runtime.stall.AnswerWait`), the next message arrives at once. After the last
 message the run ends once the system is idle the same way. A logic that stops completing
 transfers while work is pending ends the run with the stall watchdog's report
 (`rfc.runtime.stall`). Results go back through files: the published messages
@@ -38,7 +39,7 @@ from rfc.runtime.arrivals import IDLE_FRACTION, ArrivalClock
 from rfc.runtime.core import Published, QueueConfig, QueuePolicy, Runtime
 from rfc.runtime.protocol import Chunk
 from rfc.runtime.records import write_records
-from rfc.runtime.stall import StallError, StallWatch, largest_output, pending_work
+from rfc.runtime.stall import AnswerWait, StallError, StallWatch, largest_output, pending_work
 from rfc.runtime.status import read_status
 
 
@@ -56,6 +57,7 @@ class _Replay:
         self.watch = StallWatch(
             job["stall_cycles"], len(dut.s_axis_mm2s_tkeep), largest_output(runtime)
         )
+        self.answer = AnswerWait(len(dut.s_axis_mm2s_tkeep))
         self.source = AxiStreamSource(
             AxiStreamBus.from_prefix(dut, "s_axis_mm2s"),
             dut.aclk,
@@ -90,6 +92,7 @@ class _Replay:
             await self.source.send(chunk.to_bytes())
             await self.source.wait()
             self.watch.completed(self.cycles(), chunk.size)
+            self.answer.sent(self.cycles(), chunk.size)
 
     async def receive(self) -> None:
         """The PL→PS DMA: every transfer to the runtime."""
@@ -97,6 +100,7 @@ class _Replay:
             frame = await self.sink.recv()
             self.received_transfers += 1
             self.watch.completed(self.cycles(), len(frame.tdata))
+            self.answer.answered()
             self.published += self.runtime.receive(bytes(frame.tdata), self.stamp, self.cycles())
             if self.runtime.waiting():
                 self.work.set()
@@ -122,7 +126,8 @@ class _Replay:
             step = min(drain, due - self.cycles())
             await Timer(step * self.period_ns, unit="ns")
             busy = self.busy()
-            if not busy and self.received_transfers == before:
+            idle = not busy and self.received_transfers == before
+            if idle and not self.answer.awaiting(self.cycles()):
                 return
             sending = self.sending.size if self.sending is not None else 0
             self.watch.check(self.cycles(), busy, self.pending, sending, self.receiving())

@@ -5,12 +5,14 @@ transfer or message begun — some DMA transfer must complete now and then. When
 `stall_cycles` plus four times the longest transfer that may be moving (in beats: the longest
 completed so far, the PS→PL transfer under way, and — while a PL→PS transfer is under way — the
 largest frame a publisher can send), the replay stops with an error that says what was pending.
-Both simulation backends use it.
+`AnswerWait` keeps a replay from calling a logic idle while it may still answer a large frame.
+Both simulation backends use them.
 """
 
 from __future__ import annotations
 
 import math
+from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -93,6 +95,39 @@ class StallWatch:
 
     def _beats(self, transfer_bytes: int) -> int:
         return math.ceil(transfer_bytes / self.lanes)
+
+
+@dataclass
+class AnswerWait:
+    """How long a replay waits for the logic's answer to a transfer before calling it idle.
+
+    A subscriber's frame guard holds a whole frame before handing any of it on, so the answer
+    to a transfer of N beats may begin N cycles and more after the transfer ends: far longer
+    than the drain window when frames are large. Each completed PS→PL transfer of N beats is
+    awaited for 4N cycles, or until a PL→PS transfer completes (the oldest first); a logic that
+    answers nothing (it drops the message) costs those cycles and no more.
+
+    Attributes:
+        lanes: Bytes per beat of the DMA streams.
+    """
+
+    lanes: int
+    _deadlines: deque[int] = field(default_factory=deque, init=False)
+
+    def sent(self, cycle: int, transfer_bytes: int) -> None:
+        """A PS→PL transfer of `transfer_bytes` completed at `cycle`."""
+        self._deadlines.append(cycle + 4 * math.ceil(transfer_bytes / self.lanes))
+
+    def answered(self) -> None:
+        """A PL→PS transfer completed: the oldest transfer awaited has its answer."""
+        if self._deadlines:
+            self._deadlines.popleft()
+
+    def awaiting(self, cycle: int) -> bool:
+        """Whether an answer may still come at `cycle`."""
+        while self._deadlines and self._deadlines[0] <= cycle:
+            self._deadlines.popleft()
+        return bool(self._deadlines)
 
 
 def largest_output(runtime: Runtime) -> int:

@@ -290,6 +290,9 @@ class _Run:
     ) -> tuple[list[Published], Account]:
         from rfc.runtime.hardware import simulate_with_ghdl
 
+        simulator = self._simulator(top)
+        if simulator == "verilator":
+            return self._engine(top, progress), self.runtime.account
         run = simulate_with_ghdl(
             self.runtime.plan.design,
             self.bag.resolve(),
@@ -302,9 +305,29 @@ class _Run:
             stall_cycles=self.stall_cycles,
             seed=self.seed,
             progress=progress,
-            simulator=self._simulator(top),
+            simulator=simulator,
         )
         return run.published, run.account
+
+    def _engine(self, top: SimulationTop, progress: Callable[[int], None]) -> list[Published]:
+        """Verilator with the DMA streams driven in C++ (`rfc.runtime.stream_engine`)."""
+        from rfc.runtime.stream_engine import EngineError, simulate_with_engine
+        from rfc.toolchain import CosimError
+        from rfc.toolchain.verilator import VerilatorError
+
+        try:
+            with closing(self.messages()) as messages:
+                return simulate_with_engine(
+                    self.runtime,
+                    messages,
+                    top,  # type: ignore[arg-type]  # _simulator checked it has Verilog
+                    drain_cycles=self.drain_cycles,
+                    stall_cycles=self.stall_cycles,
+                    seed=self.seed,
+                    progress=progress,
+                )
+        except (VerilatorError, EngineError) as exc:
+            raise CosimError(str(exc)) from None
 
     def _simulator(self, top: SimulationTop) -> str:
         """The simulator asked for, else the fastest the logic allows."""

@@ -130,6 +130,56 @@ def run_testbench(
     return result.stdout
 
 
+def build_stream_engine(
+    testbench: Path, sources: Sequence[Path], top: str, lanes: int, status_ports: Sequence[str]
+) -> Path:
+    """Compile the stream engine around the Verilog `top` (cached by content), return it.
+
+    Args:
+        testbench: The engine's C++ source (`rfc.runtime.stream_engine`).
+        sources: Verilog files of the logic in compile order.
+        top: The system's top module (the ports of the system contract).
+        lanes: Bytes per beat of the DMA streams.
+        status_ports: The top's status registers, read back at the end of a run.
+
+    Raises:
+        VerilatorError: Verilator cannot build it.
+    """
+    ports = "".join(f" X({name})" for name in status_ports)
+    header = f"#define RFC_LANES {lanes}\n#define RFC_STATUS_PORTS(X){ports}\n"
+    options = [*OPTIONS, "--cc", "--exe", "--build", "-O3", "--prefix", "Vdut"]
+    options += ["--top-module", top, "-CFLAGS", "-O2"]
+    digest = hashlib.sha256()
+    for part in (verilator_version(), *options, header, testbench.read_text()):
+        digest.update(part.encode() + b"\n")
+    for path in sources:
+        for line in canonical_lines(Path(path).read_text()):
+            digest.update(line.encode() + b"\n")
+    model = model_cache() / f"engine-{digest.hexdigest()[:32]}"
+    if (model / "Vdut").is_file():
+        return model / "Vdut"
+    model.parent.mkdir(parents=True, exist_ok=True)
+    partial = Path(tempfile.mkdtemp(prefix=f"{model.name}.", dir=model.parent))
+    (partial / "engine_ports.h").write_text(header)
+    with verilator_environment():
+        command = [
+            "verilator",
+            *options,
+            "-CFLAGS",
+            f"-I{partial}",
+            "-Mdir",
+            str(partial),
+            str(testbench),
+            *map(str, sources),
+        ]
+        result = subprocess.run(command, capture_output=True, text=True, check=False)
+    if result.returncode != 0:
+        raise VerilatorError(f"Verilator could not build {top}:\n{result.stderr[-4000:]}")
+    with contextlib.suppress(OSError):  # another process may have built it meanwhile
+        partial.rename(model)
+    return model / "Vdut" if (model / "Vdut").is_file() else partial / "Vdut"
+
+
 def model_cache() -> Path:
     """Where compiled Verilator models are kept: ``$RFC_CACHE_DIR/verilator`` or ``~/.cache``."""
     root = os.environ.get("RFC_CACHE_DIR") or Path.home() / ".cache" / "rfc"

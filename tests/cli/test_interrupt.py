@@ -1,4 +1,7 @@
-"""Ctrl-C during `rfc sim`: rfc stops, GHDL and every other child with it, and no traceback."""
+"""Ctrl-C during `rfc sim`: rfc stops, the simulator and every other child with it, no traceback.
+
+The simulator is GHDL (under cocotb) or the Verilated logic with its C++ testbench (``Vdut``).
+"""
 
 from __future__ import annotations
 
@@ -8,6 +11,8 @@ import subprocess
 import sys
 import time
 from pathlib import Path
+
+import pytest
 
 from rfc.cli.interrupt import INTERRUPTED_STATUS, descendants
 from rfc.messages.rosbags_adapter import message_types, write_bag
@@ -32,7 +37,12 @@ def _alive(pid: int) -> bool:
     return state != "Z"
 
 
-def test_sigint_stops_rfc_sim_and_the_simulator(tmp_path):
+#: Each simulator and the name of its process.
+SIMULATORS = {"ghdl": "ghdl", "verilator": "Vdut"}
+
+
+@pytest.mark.parametrize("simulator", SIMULATORS)
+def test_sigint_stops_rfc_sim_and_the_simulator(tmp_path, simulator):
     types = message_types("ros2")
     bag = tmp_path / "in.mcap"
     rows = [(m.topic, m.timestamp_ns, m.data) for m in pose_messages(types, 3000)]
@@ -40,7 +50,7 @@ def test_sigint_stops_rfc_sim_and_the_simulator(tmp_path):
     spec = system_copy(tmp_path, "pose_mixed.yaml")
     out = tmp_path / "out.mcap"
     command = [sys.executable, "-m", "rfc", "sim", spec, "--bag", bag, "--out", out,
-               "--simulator", "ghdl"]  # fmt: skip
+               "--simulator", simulator]  # fmt: skip
     process = subprocess.Popen(
         list(map(str, command)),
         stdout=subprocess.PIPE,
@@ -51,10 +61,11 @@ def test_sigint_stops_rfc_sim_and_the_simulator(tmp_path):
     )
     try:
         simulators: list[int] = []
-        deadline = time.monotonic() + 120
+        deadline = time.monotonic() + 300  # Verilator compiles the logic first
         while not simulators and time.monotonic() < deadline and process.poll() is None:
             time.sleep(0.2)
-            simulators = [p for p in descendants(process.pid) if "ghdl" in _name(p)]
+            found = descendants(process.pid)
+            simulators = [p for p in found if SIMULATORS[simulator] in _name(p)]
         assert simulators, "the simulator never started"
         time.sleep(1)  # well inside the simulation
         os.kill(process.pid, signal.SIGINT)

@@ -68,13 +68,13 @@ def test_the_quaternion_system_gives_the_same_angles_in_every_reading(tmp_path):
     assert len(list(read_bag(tmp_path / "verilog.mcap", types))) == 12
     # the compiled model is cached by content: a second run does not build again
     (model,) = (tmp_path / "cache/verilator").iterdir()
-    built = (model / "quaternion_to_euler_pl").stat().st_mtime_ns
+    built = (model / "Vdut").stat().st_mtime_ns
     args = ("sim", spec, "--bag", bag, "--out", tmp_path / "again.mcap", "--drain-cycles", "300")
     result = run_rfc(*args, cwd=ROOT, env={"RFC_CACHE_DIR": str(tmp_path / "cache")})
     assert result.returncode == 0, result.stderr
     assert (tmp_path / "again.mcap").read_bytes() == outputs["rtl"]  # Verilator by default
     assert [m.name for m in (tmp_path / "cache/verilator").iterdir()] == [model.name]
-    assert (model / "quaternion_to_euler_pl").stat().st_mtime_ns == built
+    assert (model / "Vdut").stat().st_mtime_ns == built
 
 
 @pytest.mark.slow

@@ -191,13 +191,15 @@ def echo_instance(width: int, routes: tuple[int, ...], cut_beats: int = 0):
 class FixtureTop:
     """What `rfc.lower.hardware.simulation_top` returns: entity, VHDL sources, bus width.
 
-    `myhdl` makes the same logic as a MyHDL block from the port signals (``--backend myhdl``).
+    `myhdl` makes the same logic as a MyHDL block from the port signals (``--backend myhdl``);
+    `verilog`, when given, is the same logic for Verilator.
     """
 
     top: str
     sources: list[Path]
     bus_width: int
     myhdl: Callable[..., Any]
+    verilog: tuple[Path, ...] = ()
 
 
 def route_table(design: Design) -> tuple[int, ...]:

@@ -3,7 +3,7 @@
 `deaf_top` never takes a PS→PL beat. `babbling_top` takes every PS→PL transfer, and after the
 first one starts a PL→PS chunk (START, id 0) that never ends: its beats keep coming without
 ``tlast``. Both are top providers for ``rfc sim --top-provider``; their ``myhdl`` field gives
-the same logic for ``--backend myhdl``.
+the same logic for ``--backend myhdl``, their ``verilog`` for Verilator.
 """
 
 from __future__ import annotations
@@ -62,10 +62,12 @@ def _top(design: Design, directory: Path, babble: bool) -> FixtureTop:
     width = design.project.bus_width
     name = "babbling_top" if babble else "deaf_top"
     files = convert_myhdl(
-        stuck_logic(*contract_signals(width), babble=babble), name, directory, verilog=False,
+        stuck_logic(*contract_signals(width), babble=babble), name, directory,
         header="rfc test fixture: a logic that stalls",
     )  # fmt: skip
-    return FixtureTop(name, files, width, partial(stuck_logic, babble=babble))
+    vhdl = [f for f in files if f.suffix == ".vhd"]
+    verilog = tuple(f for f in files if f.suffix == ".v")
+    return FixtureTop(name, vhdl, width, partial(stuck_logic, babble=babble), verilog)
 
 
 def deaf_top(design: Design, directory: Path) -> FixtureTop:

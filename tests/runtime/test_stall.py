@@ -1,7 +1,7 @@
 """The stall watchdog: a logic that stops moving ends `rfc sim` with an error, never a hang.
 
 Two fixture logics stall in the two ways a logic can (tests/runtime/stuck_top.py): one never
-takes a PS→PL beat, one starts a PL→PS transfer and never ends it. On both backends `rfc sim`
+takes a PS→PL beat, one starts a PL→PS transfer and never ends it. On every simulator `rfc sim`
 exits 1 naming what was pending, writes no bag, and prints no traceback.
 """
 
@@ -10,7 +10,7 @@ from __future__ import annotations
 import pytest
 
 from rfc.messages.rosbags_adapter import message_types, write_bag
-from rfc.runtime.stall import StallError, StallWatch
+from rfc.runtime.stall import AnswerWait, StallError, StallWatch
 from tests.runtime.support import pose_messages, system_copy
 from tests.support.cli import run_rfc
 
@@ -33,14 +33,21 @@ def bag(tmp_path):
     return path
 
 
-@pytest.mark.parametrize("backend", ["ghdl", "myhdl"])
+SIMULATORS = {
+    "ghdl": ("--simulator", "ghdl"),
+    "verilator": ("--simulator", "verilator"),
+    "myhdl": ("--backend", "myhdl"),
+}
+
+
+@pytest.mark.parametrize("simulator", SIMULATORS)
 @pytest.mark.parametrize("logic", STUCK)
-def test_a_stalling_logic_ends_the_replay_with_what_was_pending(tmp_path, bag, backend, logic):
+def test_a_stalling_logic_ends_the_replay_with_what_was_pending(tmp_path, bag, simulator, logic):
     spec = system_copy(tmp_path, "pose_mixed.yaml")
     pending, provider = STUCK[logic]
     out = tmp_path / "out.mcap"
     result = run_rfc(
-        "sim", spec, "--bag", bag, "--out", out, "--backend", backend,
+        "sim", spec, "--bag", bag, "--out", out, *SIMULATORS[simulator],
         "--top-provider", provider, "--stall-cycles", "3000",
     )  # fmt: skip
     assert result.returncode == 1
@@ -71,3 +78,16 @@ def test_a_long_transfer_under_way_gets_its_time_before_it_completes():
     watch.check(3000, busy=True, pending=lambda: "x", receiving=True)
     with pytest.raises(StallError):
         watch.check(4200, busy=True, pending=lambda: "x", sending_bytes=8000)
+
+
+def test_an_answer_is_awaited_four_times_the_transfer_until_the_logic_answers():
+    answer = AnswerWait(lanes=8)
+    assert not answer.awaiting(0)
+    answer.sent(100, transfer_bytes=8000)  # 1,000 beats: awaited until cycle 4,100
+    answer.sent(200, transfer_bytes=80)  # 10 beats: until cycle 240
+    assert answer.awaiting(4099)
+    answer.answered()  # the first transfer's answer; the second is past its time
+    assert not answer.awaiting(300)
+    answer.sent(5000, transfer_bytes=8)
+    assert answer.awaiting(5003)
+    assert not answer.awaiting(5004)

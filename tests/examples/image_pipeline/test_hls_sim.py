@@ -12,7 +12,7 @@ from rfc.messages.rosbags_adapter import message_types, read_bag
 from tests.support.cli import run_rfc
 
 ROOT = Path(__file__).resolve().parents[3]
-SPEC = ROOT / "examples" / "image_pipeline" / "ImagePipeline.yaml"
+SPEC = ROOT / "examples" / "image_pipeline" / "ImagePipeline_hls.yaml"
 _SCRIPT = importlib.util.spec_from_file_location("make_bag", SPEC.parent / "make_bag.py")
 assert _SCRIPT is not None
 assert _SCRIPT.loader is not None

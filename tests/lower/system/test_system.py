@@ -141,7 +141,7 @@ def test_an_hls_function_with_the_wrong_arguments_is_refused_at_its_line(tmp_pat
 def test_hls_structs_and_streams_are_refused_in_the_logic_naming_the_argument(tmp_path):
     # small images: buffers within the part's block RAM, so the HLS cores are what is refused
     shutil.copytree(ROOT / "examples/image_pipeline", tmp_path / "images")
-    spec = tmp_path / "images/ImagePipeline.yaml"
+    spec = tmp_path / "images/ImagePipeline_hls.yaml"
     spec.write_text(spec.read_text().replace("data: 6220800", "data: 4096"))
     message = refused(spec, tmp_path / "b")
     assert "takes message structs and streams ('rgb_t rgb')" in message

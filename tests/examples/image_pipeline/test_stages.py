@@ -1,0 +1,77 @@
+"""The image stages in MyHDL's simulator, against NumPy: every pixel, header and size.
+
+Images of varying size go through one stage back to back — odd widths and heights, one row,
+one column, images that downscale to nothing — with idle cycles on the input and random
+back-pressure on every output.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from tests.examples.image_pipeline.stage_bench import (
+    FRAME,
+    example_module,
+    random_pictures,
+    run_stage,
+)
+
+stages = example_module("stages")
+reference = example_module("image_reference")
+
+SIZES = [(5, 7), (1, 1), (2, 2), (1, 9), (8, 1), (30, 40), (13, 17), (3, 2), (0, 0), (16, 24)]
+WITH_ENCODING = [*FRAME, "encoding", "step", "is_bigendian"]
+
+
+def check(results, pictures, expected, encoding=None, pixel_bytes=1):
+    assert len(results) == len(pictures)
+    for picture, result, want in zip(pictures, results, expected, strict=True):
+        assert (result.height, result.width) == want.shape
+        assert result.data == want.tobytes()
+        assert (result.sec, result.nanosec, result.frame_id) == (
+            picture.sec,
+            picture.nanosec,
+            picture.frame_id,
+        )
+        if encoding is not None:
+            assert result.encoding == encoding
+            assert result.step == pixel_bytes * want.shape[1]
+
+
+@pytest.mark.parametrize("width", [32, 64])
+def test_rgb_to_gray_gives_opencvs_integer_luma(width):
+    pictures = random_pictures(np.random.default_rng(width), SIZES, channels=3)
+    results = run_stage(stages.rgb_to_gray, pictures, WITH_ENCODING, width, seed=width)
+    expected = [reference.gray(p.pixels) for p in pictures]
+    check(results, pictures, expected, "mono8")
+
+
+@pytest.mark.parametrize("width", [32, 64])
+def test_downscale_gives_the_rounded_mean_of_each_2x2_block(width):
+    pictures = random_pictures(np.random.default_rng(width + 1), SIZES, channels=1)
+    results = run_stage(stages.downscale, pictures, WITH_ENCODING, width, seed=width)
+    expected = [reference.downscale(p.pixels) for p in pictures]
+    check(results, pictures, expected, "mono8")
+
+
+@pytest.mark.parametrize("width", [32, 64])
+def test_integral_image_gives_the_cumulative_sums_as_little_endian_uint32(width):
+    pictures = random_pictures(np.random.default_rng(width + 2), SIZES, channels=1)
+    results = run_stage(stages.integral_image, pictures, WITH_ENCODING, width, seed=width)
+    expected = [reference.integral(p.pixels) for p in pictures]
+    check(results, pictures, expected, "32SC1", pixel_bytes=4)
+
+
+def test_a_stage_whose_output_has_no_encoding_sends_only_the_frame():
+    pictures = random_pictures(np.random.default_rng(5), [(4, 6), (3, 3)], channels=1)
+    results = run_stage(stages.integral_image, pictures, FRAME, 64)
+    assert [r.encoding for r in results] == [None, None]
+    check(results, pictures, [reference.integral(p.pixels) for p in pictures])
+
+
+def test_bright_images_sum_beyond_sixteen_bits():
+    pictures = random_pictures(np.random.default_rng(6), [(30, 40)], channels=1)
+    white = [type(pictures[0])(np.full((30, 40), 255, np.uint8), 1, 2, "white")]
+    results = run_stage(stages.integral_image, white, FRAME, 64)
+    assert np.frombuffer(results[0].data, "<u4")[-1] == 255 * 30 * 40

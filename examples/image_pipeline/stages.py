@@ -89,8 +89,15 @@ def rgb_to_gray(clk: Any, rst: Any, rgb: Any, gray: Any) -> Any:
         if accept:
             pixel_valid.next = 0
         if take:
+            # operands as wide as the sum: VHDL sizes a product by its operands
+            r = intbv(0)[22:]
+            g = intbv(0)[22:]
+            b = intbv(0)[22:]
+            r[8:] = bytes_in[8:0]
+            g[8:] = bytes_in[16:8]
+            b[8:] = bytes_in[24:16]
             luma = intbv(0)[22:]
-            luma[:] = red * bytes_in[8:0] + green * bytes_in[16:8] + blue * bytes_in[24:16] + 8192
+            luma[:] = red * r + green * g + blue * b + 8192
             pixel.next = luma[22:14]
             pixel_valid.next = 1
         held = intbv(0)[8 * capacity :]
@@ -131,7 +138,7 @@ def downscale(clk: Any, rst: Any, full: Any, small: Any) -> Any:
     width, height = full.width, full.height
     column = Signal(intbv(0)[32:])
     odd_row = Signal(bool(0))
-    left = Signal(intbv(0)[8:])
+    left = Signal(intbv(0)[9:])  # as wide as `pair`: VHDL sizes a sum by its operands
     pair = Signal(intbv(0)[9:])
     above = Signal(intbv(0)[9:])
     pixel, pixel_valid = Signal(intbv(0)[8:]), Signal(bool(0))
@@ -171,7 +178,10 @@ def downscale(clk: Any, rst: Any, full: Any, small: Any) -> Any:
             if not column[0]:
                 left.next = byte
             elif odd_row:
-                pixel.next = (above + pair + 2) >> 2
+                box = intbv(0)[10:]  # as wide as the sum: VHDL sizes a sum by its operands
+                box[9:] = above
+                box[:] = box + pair + 2
+                pixel.next = box[10:2]
                 pixel_valid.next = 1
             if column == width - 1:
                 column.next = 0

@@ -16,7 +16,7 @@ import sys
 import numpy as np
 
 from rfc.messages.rosbags_adapter import message_types, read_bag
-from tests.examples.image_pipeline.stage_bench import EXAMPLE, example_module
+from tests.examples.image_pipeline.example import EXAMPLE, example_module
 from tests.support.cli import run_rfc
 
 SPEC = EXAMPLE / "ImagePipeline.yaml"

@@ -10,18 +10,15 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from tests.examples.image_pipeline.stage_bench import (
-    FRAME,
-    example_module,
-    random_pictures,
-    run_stage,
-)
+from tests.examples.image_pipeline.example import example_module
 
 stages = example_module("stages")
 reference = example_module("image_reference")
+bench = example_module("image_bench")
+FRAME, random_pictures, run_stage = bench.FRAME, bench.random_pictures, bench.run_stage
 
 SIZES = [(5, 7), (1, 1), (2, 2), (1, 9), (8, 1), (30, 40), (13, 17), (3, 2), (0, 0), (16, 24)]
-WITH_ENCODING = [*FRAME, "encoding", "step", "is_bigendian"]
+WITH_ENCODING = bench.WITH_ENCODING
 
 
 def check(results, pictures, expected, encoding=None, pixel_bytes=1):
@@ -75,3 +72,16 @@ def test_bright_images_sum_beyond_sixteen_bits():
     white = [type(pictures[0])(np.full((30, 40), 255, np.uint8), 1, 2, "white")]
     results = run_stage(stages.integral_image, white, FRAME, 64)
     assert np.frombuffer(results[0].data, "<u4")[-1] == 255 * 30 * 40
+
+
+def test_the_three_stages_joined_as_the_top_level_joins_them_give_numpys_pipeline():
+    pictures = random_pictures(np.random.default_rng(7), SIZES[:6], channels=3)
+    run = bench.run_chain(
+        [stages.rgb_to_gray, stages.downscale, stages.integral_image],
+        pictures,
+        WITH_ENCODING,
+        traffic=bench.Traffic(),
+        seed=7,
+    )
+    expected = [reference.pipeline(p.pixels) for p in pictures]
+    check(run.results, pictures, expected, "32SC1", pixel_bytes=4)

@@ -1,18 +1,18 @@
-"""A MyHDL bench for one image stage: images in as a subscriber gives them, images out.
+"""A MyHDL bench for image stages: images in as a subscriber gives them, images out.
 
-The stage gets sensor_msgs/Image interface objects built from rfc's message signature. The
-feeder plays the subscriber (stamp, then frame_id streamed, then height and width, then the
-data stream, then the message's ``valid``, with idle cycles between beats); the collector
-plays the publisher (random back-pressure on every stream and on the message). `run_stage`
-returns each output image as NumPy sees it, with its stamp, frame_id, step and encoding.
+Each stage gets sensor_msgs/Image interface objects built from rfc's message signature; a
+chain of stages is joined member by member as the top level joins them. The feeder plays the
+subscriber (stamp, then frame_id streamed, then height and width, then the data stream, then
+the message's ``valid``); the collector plays the publisher. `Traffic` sets how often the
+feeder idles between beats and how often the collector takes a beat or a message: the stage
+tests use random gaps and back-pressure, `tools/bench_image.py` a full-rate feeder and
+collector to count cycles. `run_chain` returns each output image with its stamp, frame_id,
+step and encoding, and the cycles from the first input data beat to the last output beat.
 """
 
 from __future__ import annotations
 
-import importlib
-import sys
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 from myhdl import ResetSignal, Signal, Simulation, StopSimulation, delay, instance
@@ -21,21 +21,16 @@ from rfc.lib.converters.plan import plan
 from rfc.lib.converters.ports import Side, accelerator_signature
 from rfc.lib.converters.toplevel import port_signals
 from rfc.lib.interface import interface_object
+from rfc.lib.passthrough import typed_pass_through
 from rfc.messages.layout import flatten
 from rfc.messages.limits import Limits
 from rfc.messages.rosbags_adapter import message_types
 from rfc.messages.selection import select
 
-EXAMPLE = Path(__file__).resolve().parents[3] / "examples" / "image_pipeline"
 IMAGE = "sensor_msgs/msg/Image"
 FRAME = ["header", "height", "width", "data"]
-
-
-def example_module(name: str):
-    """A module of the example (its stages import their helpers by plain name)."""
-    if str(EXAMPLE) not in sys.path:
-        sys.path.insert(0, str(EXAMPLE))
-    return importlib.import_module(name)
+#: What the pipeline publishes of its last stage's image (all but the byte order).
+WITH_ENCODING = [*FRAME, "encoding", "step", "is_bigendian"]
 
 
 @dataclass(frozen=True)
@@ -62,10 +57,49 @@ class Result:
     encoding: str | None
 
 
+@dataclass(frozen=True)
+class Traffic:
+    """How the bench's ends behave, as probabilities per cycle.
+
+    Attributes:
+        idle: The feeder holds a beat back.
+        take_beat: The collector takes a beat offered.
+        take_message: The collector takes a message offered.
+    """
+
+    idle: float = 0.3
+    take_beat: float = 0.7
+    take_message: float = 0.5
+
+
+#: The ends at full rate: a beat every cycle, everything taken at once.
+FULL_RATE = Traffic(0.0, 1.0, 1.0)
+
+
+@dataclass(frozen=True)
+class Run:
+    """What came out of a bench run.
+
+    Attributes:
+        results: The output messages, in order.
+        first_beat: The cycle the first input data beat was taken.
+        last_beat: The cycle the last output data beat was taken.
+    """
+
+    results: list[Result]
+    first_beat: int
+    last_beat: int
+
+    @property
+    def cycles(self) -> int:
+        """Cycles from the first input data beat to the last output data beat, both counted."""
+        return self.last_beat - self.first_beat + 1
+
+
 def image_port(side: Side, include: list[str], width: int):
     """An interface object of sensor_msgs/Image with the given fields, for bus `width`."""
     layout = select(flatten(message_types("ros2"), IMAGE), include=include)
-    limits = Limits(string=64, fields={"data": 20000})
+    limits = Limits(string=64, fields={"data": 1920 * 1080 * 3})
     signature = accelerator_signature(plan(layout, width, limits), side, "p")
     port, _ = interface_object(signature, port_signals(signature), "port p")
     return port
@@ -73,15 +107,39 @@ def image_port(side: Side, include: list[str], width: int):
 
 def run_stage(stage, pictures: list[Picture], output: list[str], width: int = 64, seed: int = 0):
     """Feed `pictures` through `stage` (a MyHDL block function); the output messages."""
+    return run_chain([stage], pictures, output, width, Traffic(), seed).results
+
+
+def run_chain(
+    stages: list,
+    pictures: list[Picture],
+    output: list[str],
+    width: int = 64,
+    traffic: Traffic = FULL_RATE,
+    seed: int = 0,
+    limit: int = 200_000,
+) -> Run:
+    """Feed `pictures` through `stages` one after the other; `output`: the last one's fields.
+
+    Raises:
+        AssertionError: Not every image came out within `limit` cycles.
+    """
     rng = np.random.default_rng(seed)
     source = image_port(Side.SUBSCRIBER, FRAME, width)
-    target = image_port(Side.PUBLISHER, output, width)
     clk, rst = Signal(bool(0)), ResetSignal(1, active=1, isasync=False)
+    blocks, here = [], source
+    for index, stage in enumerate(stages):
+        last = index == len(stages) - 1
+        target = image_port(Side.PUBLISHER, output if last else FRAME, width)
+        blocks.append(stage(clk, rst, here, target))
+        if not last:  # the next stage's input, joined as the top level joins them
+            here = image_port(Side.SUBSCRIBER, FRAME, width)
+            blocks.append(typed_pass_through(clk, rst, target, here))
     results: list[Result] = []
-    dut = stage(clk, rst, source, target)
+    stamps = {"first": -1, "last": -1, "now": 0}
 
     def chance(p: float) -> bool:
-        return bool(rng.random() < p)
+        return p >= 1 or bool(rng.random() < p)
 
     def beats(raw: bytes, size: int) -> list[int]:
         return [int.from_bytes(raw[i : i + size], "little") for i in range(0, len(raw), size)]
@@ -97,7 +155,7 @@ def run_stage(stage, pictures: list[Picture], output: list[str], width: int = 64
         stream.length.next = len(raw)
         yield clk.posedge
         for beat in beats(raw, size):
-            while chance(0.3):
+            while traffic.idle and chance(traffic.idle):
                 stream.valid.next = 0
                 yield clk.posedge
             stream.data.next = beat
@@ -105,7 +163,15 @@ def run_stage(stage, pictures: list[Picture], output: list[str], width: int = 64
             yield clk.posedge
             while not stream.ready:
                 yield clk.posedge
+            if stream is source.data and stamps["first"] < 0:
+                stamps["first"] = stamps["now"]
             stream.valid.next = 0
+
+    @instance
+    def count():
+        while True:
+            yield clk.posedge
+            stamps["now"] += 1
 
     @instance
     def feed():
@@ -128,24 +194,26 @@ def run_stage(stage, pictures: list[Picture], output: list[str], width: int = 64
     def collect():
         streams = output_streams(target)
         received: dict[str, bytearray] = {name: bytearray() for name in streams}
-        for _ in range(200_000):
+        for _ in range(limit):
             for stream in streams.values():
-                stream.ready.next = chance(0.7)
-            target.ready.next = chance(0.5)
+                stream.ready.next = chance(traffic.take_beat)
+            target.ready.next = chance(traffic.take_message)
             yield clk.posedge
             for name, stream in streams.items():
                 if stream.valid and stream.ready:
                     size = len(stream.data) // 8
                     received[name] += int(stream.data).to_bytes(size, "little")
+                    if name == "data":
+                        stamps["last"] = stamps["now"]
             if target.valid and target.ready:
                 results.append(snapshot(target, received))
                 received = {name: bytearray() for name in streams}
                 if len(results) == len(pictures):
                     raise StopSimulation
-        raise AssertionError(f"{len(results)} of {len(pictures)} images out after 200,000 cycles")
+        raise AssertionError(f"{len(results)} of {len(pictures)} images out after {limit} cycles")
 
-    Simulation(dut, clock, feed, collect).run(quiet=True)
-    return results
+    Simulation(*blocks, clock, count, feed, collect).run(quiet=True)
+    return Run(results, stamps["first"], stamps["last"])
 
 
 def output_streams(target) -> dict:

@@ -36,28 +36,22 @@ def check(results, pictures, expected, encoding=None, pixel_bytes=1):
             assert result.step == pixel_bytes * want.shape[1]
 
 
-@pytest.mark.parametrize("width", [32, 64])
-def test_rgb_to_gray_gives_opencvs_integer_luma(width):
-    pictures = random_pictures(np.random.default_rng(width), SIZES, channels=3)
-    results = run_stage(stages.rgb_to_gray, pictures, WITH_ENCODING, width, seed=width)
-    expected = [reference.gray(p.pixels) for p in pictures]
-    check(results, pictures, expected, "mono8")
+STAGES = {
+    "RgbToGray: OpenCV's integer luma": ("rgb_to_gray", "gray", 3, "mono8", 1),
+    "Downscale: the rounded mean of each 2x2 block": ("downscale", "downscale", 1, "mono8", 1),
+    "IntegralImage: cumulative sums as little-endian uint32": (
+        "integral_image", "integral", 1, "32SC1", 4),
+}  # fmt: skip
 
 
 @pytest.mark.parametrize("width", [32, 64])
-def test_downscale_gives_the_rounded_mean_of_each_2x2_block(width):
-    pictures = random_pictures(np.random.default_rng(width + 1), SIZES, channels=1)
-    results = run_stage(stages.downscale, pictures, WITH_ENCODING, width, seed=width)
-    expected = [reference.downscale(p.pixels) for p in pictures]
-    check(results, pictures, expected, "mono8")
-
-
-@pytest.mark.parametrize("width", [32, 64])
-def test_integral_image_gives_the_cumulative_sums_as_little_endian_uint32(width):
-    pictures = random_pictures(np.random.default_rng(width + 2), SIZES, channels=1)
-    results = run_stage(stages.integral_image, pictures, WITH_ENCODING, width, seed=width)
-    expected = [reference.integral(p.pixels) for p in pictures]
-    check(results, pictures, expected, "32SC1", pixel_bytes=4)
+@pytest.mark.parametrize("stage", STAGES.values(), ids=STAGES.keys())
+def test_each_stage_gives_numpys_image_with_the_input_header(stage, width):
+    block, formula, channels, encoding, pixel_bytes = stage
+    pictures = random_pictures(np.random.default_rng(width + channels), SIZES, channels)
+    results = run_stage(getattr(stages, block), pictures, WITH_ENCODING, width, seed=width)
+    expected = [getattr(reference, formula)(p.pixels) for p in pictures]
+    check(results, pictures, expected, encoding, pixel_bytes)
 
 
 def test_a_stage_whose_output_has_no_encoding_sends_only_the_frame():

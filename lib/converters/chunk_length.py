@@ -2,15 +2,17 @@
 
 The manager strips each chunk's header (docs/protocol.md: ``u16 id``, ``u16 flags``, ``u32
 length``) before the payload reaches a subscriber, so a subscriber cannot know a frame's length
-before its ``tlast``. This snooper watches the DMA's stream into the manager without driving
-any of it and holds the ``length`` of the last header whose ``id`` is its subscriber's. The
-manager routes a chunk's payload without buffering it, so the next header passes only after
-the previous chunk's last beat was taken: the length is the current frame's when the frame's
-first beat is taken (the prefix guard keeps it from then on).
+before its ``tlast``. `dma_tap` sits between the DMA and the manager, passes the stream through
+unchanged (no register, no cycle) and holds, per subscriber it serves, the ``length`` of the
+last header whose ``id`` is that subscriber's (`chunk_length`). The manager routes a chunk's
+payload without buffering it, so the next header passes only after the previous chunk's last
+beat was taken: the length is the current frame's when the frame's first beat is taken (the
+prefix guard keeps it from then on).
 """
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Any
 
 from myhdl import Signal, always_comb, always_seq, block, intbv
@@ -21,20 +23,57 @@ from rfc.lib.converters.ports import Direction, Port, PortRole
 HEADER_BYTES = 8
 #: Bits of the header's length field.
 LENGTH_BITS = 32
-#: The prefix of the snooped DMA stream's ports.
-SNOOP = "mm2s"
 
 
-def snoop_ports(width: int) -> list[Port]:
-    """The snooper's inputs: the DMA stream into the manager, `width` bytes a beat."""
-    into = Direction.IN
-    return [
-        Port(f"{SNOOP}_tdata", 8 * width, into, PortRole.TDATA, SNOOP),
-        Port(f"{SNOOP}_tkeep", width, into, PortRole.TKEEP, SNOOP),
-        Port(f"{SNOOP}_tvalid", 1, into, PortRole.TVALID, SNOOP),
-        Port(f"{SNOOP}_tready", 1, into, PortRole.TREADY, SNOOP),
-        Port(f"{SNOOP}_tlast", 1, into, PortRole.TLAST, SNOOP),
+def length_port(subscriber: int) -> str:
+    """The tap's output holding the declared length of subscriber `subscriber`'s frames."""
+    return f"length_sub{subscriber}"
+
+
+def dma_tap_ports(width: int, subscribers: Sequence[int]) -> list[Port]:
+    """The tap's ports for a bus of `width` bytes serving `subscribers`, in declaration order."""
+    ports = [Port("clk", 1, Direction.IN, PortRole.CLOCK), Port("rst", 1, Direction.IN,
+             PortRole.RESET)]  # fmt: skip
+    for bus, out, into in (
+        ("s_axis", Direction.IN, Direction.OUT),
+        ("m_axis", Direction.OUT, Direction.IN),
+    ):
+        ports += [
+            Port(f"{bus}_tdata", 8 * width, out, PortRole.TDATA, bus),
+            Port(f"{bus}_tkeep", width, out, PortRole.TKEEP, bus),
+            Port(f"{bus}_tvalid", 1, out, PortRole.TVALID, bus),
+            Port(f"{bus}_tready", 1, into, PortRole.TREADY, bus),
+            Port(f"{bus}_tlast", 1, out, PortRole.TLAST, bus),
+        ]
+    return ports + [
+        Port(length_port(s), LENGTH_BITS, Direction.OUT, PortRole.FIELD) for s in subscribers
     ]
+
+
+@block
+def dma_tap(subscribers: Sequence[int], **ports: Any) -> Any:
+    """The DMA stream passed on, and each subscriber's declared length; `ports`: `dma_tap_ports`."""
+    s_data, s_keep, s_valid, s_ready, s_last = (
+        ports[f"s_axis_{n}"] for n in ("tdata", "tkeep", "tvalid", "tready", "tlast")
+    )
+    m_data, m_keep, m_valid, m_ready, m_last = (
+        ports[f"m_axis_{n}"] for n in ("tdata", "tkeep", "tvalid", "tready", "tlast")
+    )
+
+    @always_comb
+    def through() -> None:
+        m_data.next = s_data
+        m_keep.next = s_keep
+        m_valid.next = s_valid
+        m_last.next = s_last
+        s_ready.next = m_ready
+
+    lengths = [
+        chunk_length(ports["clk"], ports["rst"], ident, s_data, s_valid, m_ready, s_last,
+                     ports[length_port(ident)])
+        for ident in subscribers
+    ]  # fmt: skip
+    return through, lengths
 
 
 @block

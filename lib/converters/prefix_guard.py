@@ -7,7 +7,7 @@ strings comes before it, every length of the frame is known once the sequence st
 guard then holds only the bytes up to there: a checker (a second subscriber that parses every
 field, all its outputs taken at once) reads them while they are stored, and when it starts the
 sequence the guard compares the message's size (the frame-length circuit of its lengths) with
-the frame's size the chunk header declared (`rfc.lib.converters.chunk_length`):
+the frame's size its chunk header declared (`rfc.lib.converters.chunk_length.dma_tap`):
 
 - the checker already found the frame malformed (a string over its maximum or without its
   NUL, a sequence over its maximum, a wrong CDR encapsulation): dropped, its reason counted;
@@ -29,7 +29,7 @@ from typing import Any
 
 from myhdl import ResetSignal, Signal, always, always_comb, always_seq, block, intbv
 
-from rfc.lib.converters.chunk_length import LENGTH_BITS, chunk_length, snoop_ports
+from rfc.lib.converters.chunk_length import LENGTH_BITS
 from rfc.lib.converters.frame_length import frame_length_circuit, length_formula
 from rfc.lib.converters.guard import guard_ports, held_high
 from rfc.lib.converters.malformed import DROP_REASONS, Reason, counter_name, reason_counter
@@ -89,24 +89,6 @@ def prefix_guard_ports(width: int) -> list[Port]:
     return [*guard_ports(width)[:12], declared, *guard_ports(width)[12:]]
 
 
-def snooping_guard_ports(width: int) -> list[Port]:
-    """The ports of a prefix guard with its chunk-length snooper: the DMA stream for the size."""
-    ports = guard_ports(width)
-    return [*ports[:12], *snoop_ports(width), *ports[12:]]
-
-
-@block
-def snooping_guard(checking: Plan, depth: int, ident: int, **ports: Any) -> Any:
-    """`prefix_guard` with the size read from the headers of chunks for subscriber `ident`."""
-    declared = Signal(intbv(0)[LENGTH_BITS:])
-    snooper = chunk_length(
-        ports["clk"], ports["rst"], ident, ports["mm2s_tdata"], ports["mm2s_tvalid"],
-        ports["mm2s_tready"], ports["mm2s_tlast"], declared,
-    )  # fmt: skip
-    own = {p.name: ports[p.name] for p in guard_ports(checking.width)}
-    return snooper, prefix_guard(checking, depth, frame_length=declared, **own)
-
-
 @block
 def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
     """Check each frame's prefix before it reaches the subscriber; `ports`: `prefix_guard_ports`.
@@ -130,7 +112,6 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
     assert isinstance(last, Payload)
     width = checking.width
     full_keep = (1 << width) - 1
-    padding = 3 if checking.is_cdr else 0  # ROS 2 may pad the frame to a multiple of 4
     state = Signal(intbv(0, min=0, max=len(_State)))
     written = Signal(intbv(0, min=0, max=depth + 1))
     read = Signal(intbv(0, min=0, max=depth + 1))
@@ -174,16 +155,16 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
 
     @always_comb
     def take() -> None:
-        on = state == storing and c_rst != c_rst.active and not ended
-        c_valid.next = on and s_tvalid
-        taken.next = on and s_tvalid and c_ready
-        w_enable.next = on and s_tvalid and c_ready and written < depth
+        taking = state == storing and c_rst != c_rst.active and not ended
+        c_valid.next = taking and s_tvalid
+        taken.next = taking and s_tvalid and c_ready
+        w_enable.next = taking and s_tvalid and c_ready and written < depth
         if state == passing:
             s_tready.next = m_tready
         elif state == dropping:
             s_tready.next = 1
         else:
-            s_tready.next = on and c_ready
+            s_tready.next = taking and c_ready
         address.next = 0
         if written < depth:
             address.next = written
@@ -193,17 +174,23 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
         r_enable.next = state == replaying and read < written and (not out_valid or m_tready)
 
     @always_comb
-    def pad() -> None:
+    def cdr_pad() -> None:  # ROS 2 may pad the frame to a multiple of 4
         allowed.next = size
-        if padding and size[2:0] != 0:
+        if size[2:0] != 0:
             allowed.next = size + 4 - size[2:0]
+
+    @always_comb
+    def no_pad() -> None:
+        allowed.next = size
+
+    pad = cdr_pad if checking.is_cdr else no_pad
 
     @always_comb
     def judge() -> None:
         # Once the checker starts the last sequence every length is known; a frame that ends
         # before is judged by the checker alone, as a whole.
-        ready = state == storing and c_rst != c_rst.active
-        decided.next = ready and (verdict or started)
+        judging = state == storing and c_rst != c_rst.active
+        decided.next = judging and (verdict or started)
         ok = False
         reason.next = maximum
         if failed:
@@ -218,7 +205,7 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
             reason.next = trailing
         else:
             ok = True
-        drop.next = ready and (verdict or started) and not ok
+        drop.next = judging and (verdict or started) and not ok
 
     @always_comb
     def give() -> None:

@@ -134,11 +134,10 @@ def generate_system(
     manager = manager_component(shape, directory, f"{identifier(design.project.name)}_manager")
     components.append(manager)
     builder.cell(MANAGER, manager.entity)
-    for group in (MM2S, S2MM):
-        for signal in _STREAM:
-            builder.connect(
-                Terminal(MANAGER, f"{group}_{signal}"), builder.netlist.port(f"{group}_{signal}")
-            )
+    for signal in _STREAM:
+        builder.connect(
+            Terminal(MANAGER, f"{S2MM}_{signal}"), builder.netlist.port(f"{S2MM}_{signal}")
+        )
 
     guards = SubscriberGuards(identifier(design.project.name), width, directory, limits)
     for side, converters in (
@@ -163,6 +162,7 @@ def generate_system(
             interfaces[(converter.block, "out0")] = guards.protect(
                 builder, label, converter, interface, _wire_dma
             )
+    guards.dma_input(builder, Terminal(MANAGER, MM2S))  # through a header tap if a guard needs it
     components += guards.components
     buffers |= guards.buffers
 

@@ -1,8 +1,9 @@
-"""The chunk-length snooper in MyHDL's simulator, against headers packed as docs/protocol.md says.
+"""The DMA tap in MyHDL's simulator, against chunk headers packed as docs/protocol.md says.
 
-Chunks for several subscribers (``<HHI``: id, flags, length, then the payload) pass the
-snooped stream with random idle cycles and back-pressure; after each chunk the snooper of one
-subscriber must hold the length of the last header that named it, and only that.
+Chunks for several subscribers (``<HHI``: id, flags, length, then the payload) pass the tap
+with random idle cycles and back-pressure; every beat must leave it unchanged, and after each
+chunk the tap must hold, for each subscriber it serves, the length of the last header that
+named that subscriber, and only that.
 """
 
 from __future__ import annotations
@@ -11,12 +12,12 @@ import random
 import struct
 
 import pytest
-from myhdl import ResetSignal, Signal, StopSimulation, always, block, delay, instance, intbv
+from myhdl import StopSimulation, always, block, delay, instance
 
-from rfc.lib.converters.chunk_length import LENGTH_BITS, chunk_length
-from rfc.lib.converters.toplevel import elaboration
+from rfc.lib.converters.chunk_length import dma_tap, dma_tap_ports, length_port
+from rfc.lib.converters.toplevel import elaboration, port_signals
 
-IDENT = 2
+SERVED = (2, 0)
 
 
 def chunks(rng: random.Random) -> list[tuple[int, bytes]]:
@@ -31,58 +32,66 @@ def chunks(rng: random.Random) -> list[tuple[int, bytes]]:
 
 
 @pytest.mark.parametrize("width", [8, 32, 64])
-def test_the_snooper_holds_the_length_of_its_subscribers_last_header(width):
+def test_the_tap_passes_every_beat_and_holds_each_subscribers_last_declared_length(width):
     lanes = width // 8
     rng = random.Random(width)
     sent = chunks(rng)
-    clk, rst = Signal(bool(0)), ResetSignal(1, active=1, isasync=False)
-    tdata, tvalid, tready, tlast = (Signal(intbv(0)[width:]), Signal(bool(0)), Signal(bool(0)),
-                                    Signal(bool(0)))  # fmt: skip
-    length = Signal(intbv(0)[LENGTH_BITS:])
-    seen: list[int] = []
+    signals = port_signals(dma_tap_ports(lanes, SERVED))
+    clk = signals["clk"]
+    seen: list[tuple[int, ...]] = []
+    beats_in: list[tuple[int, int, bool]] = []
+    beats_out: list[tuple[int, int, bool]] = []
 
     @block
     def bench():
-        dut = chunk_length(clk, rst, IDENT, tdata, tvalid, tready, tlast, length)
+        dut = dma_tap(SERVED, **signals)
 
         @always(delay(5))
         def clock():
             clk.next = not clk
 
         @always(clk.posedge)
-        def back_pressure():
-            tready.next = rng.random() < 0.7
+        def consume():
+            if signals["m_axis_tvalid"] and signals["m_axis_tready"]:
+                beats_out.append(tuple(int(signals[f"m_axis_{n}"]) for n in ("tdata", "tkeep",
+                                 "tlast")))  # fmt: skip
+            signals["m_axis_tready"].next = rng.random() < 0.7
 
         @instance
         def drive():
+            signals["rst"].next = 1
             yield clk.posedge
-            rst.next = 0
+            signals["rst"].next = 0
             for _, chunk in sent:
                 beats = [chunk[i : i + lanes] for i in range(0, len(chunk), lanes)]
                 for index, beat in enumerate(beats):
                     while rng.random() < 0.3:
-                        tvalid.next = 0
+                        signals["s_axis_tvalid"].next = 0
                         yield clk.posedge
-                    tdata.next = int.from_bytes(beat.ljust(lanes, b"\0"), "little")
-                    tlast.next = index == len(beats) - 1
-                    tvalid.next = 1
+                    data = int.from_bytes(beat.ljust(lanes, b"\0"), "little")
+                    keep, last = (1 << len(beat)) - 1, index == len(beats) - 1
+                    signals["s_axis_tdata"].next = data
+                    signals["s_axis_tkeep"].next = keep
+                    signals["s_axis_tlast"].next = last
+                    signals["s_axis_tvalid"].next = 1
                     yield clk.posedge
-                    while not tready:
+                    while not signals["s_axis_tready"]:
                         yield clk.posedge
-                tvalid.next = 0
+                    beats_in.append((data, keep, int(last)))
+                signals["s_axis_tvalid"].next = 0
                 yield clk.posedge
-                seen.append(int(length))
+                seen.append(tuple(int(signals[length_port(s)]) for s in SERVED))
             raise StopSimulation
 
-        return dut, clock, back_pressure, drive
+        return dut, clock, consume, drive
 
     with elaboration():
         bench().run_sim(quiet=1)
-    held, expected = 0, []
+    held, expected = dict.fromkeys(SERVED, 0), []
     for ident, chunk in sent:
-        if ident == IDENT:
-            held = struct.unpack_from("<I", chunk, 4)[0]
-        expected.append(held)
+        if ident in held:
+            held[ident] = struct.unpack_from("<I", chunk, 4)[0]
+        expected.append(tuple(held[s] for s in SERVED))
     assert seen == expected
-    assert len({ident for ident, _ in sent}) > 1
-    assert IDENT in {ident for ident, _ in sent}
+    assert all(held.values())
+    assert beats_out == beats_in

@@ -85,8 +85,10 @@ def checking_plan(converters: Plan) -> Plan | None:
 
 def prefix_guard_ports(width: int) -> list[Port]:
     """The guard's ports for a bus of `width` bytes: the frame guard's, and the declared size."""
+    ports = guard_ports(width)
+    counters = len(ports) - len(DROP_REASONS)  # the streams, then the counters
     declared = Port(DECLARED, LENGTH_BITS, Direction.IN, PortRole.FIELD)
-    return [*guard_ports(width)[:12], declared, *guard_ports(width)[12:]]
+    return [*ports[:counters], declared, *ports[counters:]]
 
 
 @block

@@ -99,15 +99,14 @@ class SubscriberGuards:
         self.components.append(tap)
         builder.cell(cell, tap.entity)
         for signal in STREAM:
-            inward = signal != "tready"
-            top, into = Terminal(cell, f"s_axis_{signal}"), builder.netlist.port(f"{MM2S}_{signal}")
-            builder.connect(top, into)
-            out, along = Terminal(cell, f"m_axis_{signal}"), Terminal(
-                manager.cell, f"{manager.port}_{signal}")  # fmt: skip
-            if inward:
-                builder.wire(out, along)
+            dma = builder.netlist.port(f"{MM2S}_{signal}")
+            builder.connect(Terminal(cell, f"s_axis_{signal}"), dma)
+            tap_out = Terminal(cell, f"m_axis_{signal}")
+            manager_in = Terminal(manager.cell, f"{manager.port}_{signal}")
+            if signal == "tready":
+                builder.wire(manager_in, tap_out)  # the manager's ready, back through the tap
             else:
-                builder.wire(along, out)
+                builder.wire(tap_out, manager_in)
         for ident in ids:
             builder.wire(
                 Terminal(cell, length_port(ident)), Terminal(self._tapped[ident], DECLARED)

@@ -186,3 +186,15 @@ def test_a_declared_size_other_than_the_frames_drops_it_before_data_moves(width)
     sent, counts = run_guard(checking_plan(converters), frames, seed=width)
     assert sent == [good[0]]
     assert Counter({k: v for k, v in counts.items() if v}) == Counter(truncated=1, trailing=1)
+
+
+@pytest.mark.parametrize("width", [32, 64])
+def test_a_chunk_shorter_than_its_header_passes_as_documented_and_the_next_frame_is_clean(width):
+    layout = image_layout(Middleware.ROS2)
+    converters = plan(layout, width, LIMITS)
+    whole, good = (encode(layout, image(index, 40)) for index in range(2))
+    cut = whole[:-7]  # the DMA ended the chunk inside data, its header still says len(whole)
+    sent, counts = run_guard(checking_plan(converters), [(cut, len(whole)), (good, len(good))],
+                             seed=width)  # fmt: skip
+    assert sent == [cut, good]  # the subscriber finds `cut` truncated at its end
+    assert not any(counts.values())

@@ -22,7 +22,7 @@ from rfc.passes.pipeline import PIPELINE
 from rfc.runtime.hls_csim import HlsOnProcessor, attach_c_simulations
 
 ROOT = Path(__file__).resolve().parents[1]
-SPEC = ROOT / "examples" / "image_pipeline" / "ImagePipeline.yaml"
+SPEC = ROOT / "examples" / "image_pipeline" / "ImagePipeline_hls.yaml"
 STAGES = ("RgbToGray", "Downscale", "IntegralImage")
 IMAGE = "sensor_msgs/msg/Image"
 

@@ -32,7 +32,8 @@ from rfc.lib.converters.buffer_sizes import Buffer, buffers_of
 from rfc.lib.converters.plan import plan
 from rfc.lib.converters.ports import Direction as PinDirection
 from rfc.lib.converters.ports import Port, PortRole, Side, accelerator_signature, ports_of
-from rfc.lib.converters.steps import ROOT, Plan
+from rfc.lib.converters.prefix_guard import SLACK_BEATS, checking_plan
+from rfc.lib.converters.steps import ROOT, Payload, Plan
 from rfc.lib.devices import block_rams, bram36
 from rfc.messages.limits import Limits
 from rfc.passes.frame_size import frame_bound
@@ -43,6 +44,8 @@ from rfc.toolchain import GhdlError, VhdlEntity, read_entities
 CDR_PAD = 3
 #: What a frame guard's buffer holds, as the report and the block-RAM check name it.
 WHOLE_FRAME = "(whole frame)"
+#: What a prefix guard's buffer holds: the frame up to its last sequence (named after it).
+PREFIX = "(frame before '{}')"
 #: Ports every accelerator has besides its message pins.
 CLOCK, RESET = "clk", "rst"
 _CLOCK_PORTS = (
@@ -289,9 +292,11 @@ def _streamed(design: Design, block_name: str) -> Iterator[str]:
 def subscriber_guard(converter: Converter, chosen: Plan, limits: Limits) -> Buffer | None:
     """The frame guard's buffer in front of a subscriber that streams, else None.
 
-    A subscriber hands strings and sequences on while it parses; a guard holds the whole frame
-    until it is known well-formed, so no part of a malformed frame reaches a consumer
-    (docs/converters.md).
+    A subscriber hands strings and sequences on while it parses; a guard holds the frame until
+    it is known well-formed, so no part of a malformed frame reaches a consumer
+    (docs/converters.md): the whole frame, or only the bytes before the message's last field
+    when that is a primitive sequence after every other length (`rfc.lib.converters.
+    prefix_guard`).
     """
     streamed = any(
         p.role is PortRole.TDATA or (p.role is PortRole.VALID and p.group != ROOT)
@@ -300,6 +305,15 @@ def subscriber_guard(converter: Converter, chosen: Plan, limits: Limits) -> Buff
     if not streamed:
         return None
     lanes = converter.bus_width // 8
+    checking = checking_plan(chosen)
+    if checking is not None:
+        last = checking.steps[-2]
+        assert isinstance(last, Payload)
+        empty = replace(limits, fields={**limits.fields, last.path: 0})
+        prefix = frame_bound(converter.layout, empty)
+        assert prefix is not None, "maxima bound every frame"
+        depth = ceil(prefix / lanes) + SLACK_BEATS
+        return Buffer("frame", PREFIX.format(last.path), depth, converter.bus_width)
     bound = frame_bound(converter.layout, limits)
     assert bound is not None, "maxima bound every frame"
     depth = ceil((bound + (CDR_PAD if chosen.is_cdr else 0)) / lanes)
@@ -324,6 +338,9 @@ def check_buffer_memory(design: Design, buffers: Mapping[str, tuple[Buffer, ...]
     example = f"{{string: 64, fields: {{{path}: N}}}}"
     if path == WHOLE_FRAME:
         largest = f"is the frame guard of '{block}', which holds its largest frame"
+        example = "{string: 64, sequence: 4096}"
+    elif path.startswith(PREFIX.format("")[:-2]):
+        largest = f"is the frame guard of '{block}', which holds its frames {path[7:-1]}"
         example = "{string: 64, sequence: 4096}"
     raise RfcError(
         f"the logic's buffers need {sum(need.values()):,} block RAMs of 36 Kb at the "

@@ -1,24 +1,38 @@
-"""The image pipeline of ImagePipeline.yaml, written in Python: the same system, the same IR."""
+"""The image pipeline of ImagePipeline.yaml, written in Python: the same system, the same IR.
+
+Its three stages are the MyHDL accelerators of stages.py, in the logic; ImagePipeline_hls.py is
+the same system with the HLS stages.
+"""
+
+from image_reference import (
+    downscale_reference,
+    integral_image_reference,
+    rgb_to_gray_reference,
+)
 
 import rfc
 
 IMAGE = "sensor_msgs/Image"
 
 
-def image_stage(name: str, source: str, port_in: str, port_out: str):
-    """An HLS stage taking an image (its header, size and pixels) and giving one."""
+def image_stage(name: str, top: str, port_in: str, port_out: str, reference):
+    """A MyHDL stage of stages.py taking an image (its header, size and pixels) and giving one."""
     return rfc.external_accelerator(
         name,
-        kind="HLS",
-        sources=source,
+        kind="MyHDL",
+        sources="./stages.py",
+        top=top,
         inputs={port_in: rfc.port(IMAGE, include=["header", "height", "width", "data"])},
         outputs={port_out: IMAGE},
+        reference=reference,
     )
 
 
-RgbToGray = image_stage("RgbToGray", "./rgb_to_gray.cpp", "rgb", "gray")
-Downscale = image_stage("Downscale", "./downscale.cpp", "full", "small")
-IntegralImage = image_stage("IntegralImage", "./integral_image.cpp", "image", "integral")
+RgbToGray = image_stage("RgbToGray", "rgb_to_gray", "rgb", "gray", rgb_to_gray_reference)
+Downscale = image_stage("Downscale", "downscale", "full", "small", downscale_reference)
+IntegralImage = image_stage(
+    "IntegralImage", "integral_image", "image", "integral", integral_image_reference
+)
 
 project = rfc.Project(
     "ImagePipeline",
@@ -28,17 +42,17 @@ project = rfc.Project(
     bus_width=64,
     clock_mhz=100,
     scheduler="LRU",
-    # full-HD RGB frames (1920 x 1080 x 3 bytes of data), short names and encodings
-    maxima={"string": 64, "fields": {"data": 6220800}},
+    # the example's images (up to 40 x 40 RGB: 4,800 bytes of data), short names and encodings
+    maxima={"string": 64, "fields": {"data": 4800}},
 )
 camera = project.subscriber(
-    "Camera_sub", IMAGE, topic="/camera/image_raw", period="33 ms", max_bytes=6220900
+    "Camera_sub", IMAGE, topic="/camera/image_raw", period="33 ms", max_bytes=5000
 )
 gray = project.accelerator("Gray_acc", RgbToGray)
 small = project.accelerator("Downscale_acc", Downscale)
 integral = project.accelerator("Integral_acc", IntegralImage)
 publisher = project.publisher(
-    "Integral_pub", IMAGE, topic="/camera/integral", period="33 ms", max_bytes=1228900
+    "Integral_pub", IMAGE, topic="/camera/integral", period="33 ms", max_bytes=5000
 )
 
 frame = ["header", "height", "width", "data"]

@@ -20,9 +20,9 @@ IMAGE = "sensor_msgs/msg/Image"
 
 
 def random_images(count: int, seed: int) -> list[np.ndarray]:
-    """Random rgb8 images (height by width by 3 bytes), 1 to 24 pixels on each side."""
+    """Random rgb8 images (height by width by 3 bytes): 1 to 30 rows of 1 to 40 pixels."""
     rng = np.random.default_rng(seed)
-    sizes = rng.integers(1, 25, size=(count, 2))
+    sizes = zip(rng.integers(1, 31, size=count), rng.integers(1, 41, size=count), strict=True)
     return [rng.integers(0, 256, size=(h, w, 3), dtype=np.uint8) for h, w in sizes]
 
 

@@ -14,7 +14,7 @@ from rfc.passes.pipeline import MODEL_PIPELINE, run_pipeline
 from rfc.spec import load_spec
 
 ROOT = Path(__file__).resolve().parents[2]
-IMAGE = ROOT / "examples" / "image_pipeline" / "ImagePipeline.yaml"
+IMAGE = ROOT / "examples" / "image_pipeline" / "ImagePipeline_hls.yaml"
 
 
 @pytest.fixture(scope="module")

@@ -116,7 +116,7 @@ def test_a_field_named_like_a_cpp_keyword_is_refused(tmp_path):
 
 
 def test_rfc_build_writes_the_header_the_example_sources_compile_against(tmp_path):
-    spec = ROOT / "examples" / "image_pipeline" / "ImagePipeline.yaml"
+    spec = ROOT / "examples" / "image_pipeline" / "ImagePipeline_hls.yaml"
     result = run_rfc("build", spec, "-o", tmp_path / "build", "--no-hardware", cwd=ROOT)
     assert result.returncode == 0, result.stderr
     for name, source in [

@@ -10,6 +10,15 @@ from pathlib import Path
 
 import pytest
 
+from rfc.ir.infrastructure import Converter
+from rfc.lib.converters.plan import plan
+from rfc.lib.converters.prefix_guard import SLACK_BEATS
+from rfc.lib.devices import bram36
+from rfc.messages.layout import flatten
+from rfc.messages.limits import Limits
+from rfc.messages.rosbags_adapter import Middleware, message_types
+from rfc.messages.selection import select
+from rfc.passes.check_hardware import subscriber_guard
 from tests.lower.system.systems import PASS_THROUGH, fan_out, point_system, point_vhdl, write_spec
 from tests.support.cli import run_rfc
 
@@ -73,7 +82,7 @@ CASES = {
     ),
     "buffers beyond the block ram": (
         multi_type_at_default_maxima,
-        "the logic's buffers need 4,619 block RAMs of 36 Kb at the project's maxima",
+        "the logic's buffers need 3,339 block RAMs of 36 Kb at the project's maxima",
     ),
 }
 
@@ -90,3 +99,21 @@ def test_check_refuses_what_build_refuses_with_the_same_message(tmp_path, case):
         assert expected in result.stderr
     assert checked.stderr == built.stderr
     assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("width", [32, 64])
+def test_a_full_hd_image_subscriber_is_guarded_by_the_bytes_before_its_data(width):
+    types = message_types(Middleware.ROS2)
+    layout = select(flatten(types, "sensor_msgs/msg/Image"), include=["header", "width", "data"])
+    limits = Limits(string=64, fields={"data": 1920 * 1080 * 3})
+    converter = Converter(0, "Camera_sub", "/image", "sensor_msgs/msg/Image", layout, width,
+                          None, 6_300_000)  # fmt: skip
+    guard = subscriber_guard(converter, plan(layout, width, limits), limits)
+    assert guard is not None
+    assert guard.path == "(frame before 'data')"
+    # the longest frame before data: rosbags' Image with both strings at their maximum
+    tree = {"header": {"frame_id": "f" * 64}, "encoding": "e" * 64}
+    longest = types.build("sensor_msgs/msg/Image", tree)
+    prefix = len(types.serialize(longest, "sensor_msgs/msg/Image"))
+    assert guard.words >= -(-prefix // (width // 8)) + SLACK_BEATS  # and the checker's slack
+    assert bram36(guard.bits, guard.words) == 1

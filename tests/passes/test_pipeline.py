@@ -22,7 +22,7 @@ ROOT = Path(__file__).resolve().parents[2]
 GOLDEN = Path(__file__).parent / "golden"
 SYSTEMS = {
     "rotation_converter": ROOT / "examples" / "rotation_converter" / "RotationConverterNode.yaml",
-    "image_pipeline": ROOT / "examples" / "image_pipeline" / "ImagePipeline.yaml",
+    "image_pipeline": ROOT / "examples" / "image_pipeline" / "ImagePipeline_hls.yaml",
 }
 #: Systems the logic cannot hold yet, with the pass that says so and what it says.
 REFUSED = {"image_pipeline": ("check-hardware", "the logic's buffers need")}

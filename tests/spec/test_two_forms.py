@@ -15,6 +15,7 @@ ROOT = Path(__file__).resolve().parents[2]
 PAIRS = {
     "listing 1 (HLS, ROS 1)": ROOT / "examples" / "rotation_converter" / "RotationConverterNode",
     "image pipeline (include/exclude)": ROOT / "examples" / "image_pipeline" / "ImagePipeline",
+    "image pipeline, HLS stages": ROOT / "examples" / "image_pipeline" / "ImagePipeline_hls",
     "MyHDL accelerator (ROS 2, timing)": Path(__file__).parent / "systems" / "quat_myhdl",
 }
 

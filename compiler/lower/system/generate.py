@@ -31,6 +31,7 @@ from rfc.lower.system.components import (
 )
 from rfc.lower.system.guards import SubscriberGuards
 from rfc.lower.system.interfaces import MESSAGE
+from rfc.lower.system.stream_marks import StreamMarks
 from rfc.lower.system.top import CLOCK, RESET_N, Interface, Terminal, TopBuilder, wire_connection
 from rfc.messages.limits import Limits
 from rfc.passes.check_hardware import check_buffer_memory
@@ -133,11 +134,10 @@ def generate_system(
     manager = manager_component(shape, directory, f"{identifier(design.project.name)}_manager")
     components.append(manager)
     builder.cell(MANAGER, manager.entity)
-    for group in (MM2S, S2MM):
-        for signal in _STREAM:
-            builder.connect(
-                Terminal(MANAGER, f"{group}_{signal}"), builder.netlist.port(f"{group}_{signal}")
-            )
+    for signal in _STREAM:
+        builder.connect(
+            Terminal(MANAGER, f"{S2MM}_{signal}"), builder.netlist.port(f"{S2MM}_{signal}")
+        )
 
     guards = SubscriberGuards(identifier(design.project.name), width, directory, limits)
     for side, converters in (
@@ -162,6 +162,7 @@ def generate_system(
             interfaces[(converter.block, "out0")] = guards.protect(
                 builder, label, converter, interface, _wire_dma
             )
+    guards.dma_input(builder, Terminal(MANAGER, MM2S))  # through a header tap if a guard needs it
     components += guards.components
     buffers |= guards.buffers
 
@@ -186,6 +187,7 @@ def generate_system(
 
     check_buffer_memory(design, buffers)  # after the accelerators: their errors come first
     forks: dict[int, Component] = {}
+    marks = StreamMarks(identifier(design.project.name), width, directory, limits)
     by_source: dict[tuple[str, str], list[Connection]] = defaultdict(list)
     for connection in infrastructure.hardware_connections:
         by_source[(connection.source.block, connection.source.port or "")].append(connection)
@@ -193,13 +195,17 @@ def generate_system(
         targets = [interfaces[(c.destination.block, c.destination.port or "")] for c in connections]
         what = f"connection {connections[0].source} → {connections[0].destination}"
         if len(targets) == 1:
-            wire_connection(builder, interfaces[source], targets[0], what)
+            complete = marks.complete(
+                builder, design, connections[0], interfaces[source], targets[0]
+            )
+            wire_connection(builder, complete, targets[0], what)
             continue
         if len(targets) not in forks:
             forks[len(targets)] = fork_component(len(targets), directory, f"rfc_fork{len(targets)}")
             components.append(forks[len(targets)])
         _fan_out(builder, interfaces[source], targets, forks[len(targets)].entity, what)
 
+    components += marks.components
     _tie_unused_readies(builder)
     netlist = builder.finish()
     top_file = directory / f"{top_name(design)}.vhd"

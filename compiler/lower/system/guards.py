@@ -4,8 +4,10 @@ A subscriber whose consumers get only fixed-size fields presents a whole frame a
 registers with ``msg_valid``: a *drop gate* behind it takes a rejected record before any
 consumer sees it. A subscriber that hands strings or sequences on as sub-streams gets a *frame
 guard* in front instead: the frame is checked whole in a buffer before the subscriber sees it
-(`rfc.lib.converters.guard`). Either counts what it drops by reason on the top level's status
-ports (docs/protocol.md).
+(`rfc.lib.converters.guard`), or only its bytes before a last primitive sequence, against the
+size its chunk header declared, which the guard reads off the DMA stream into the manager
+(`rfc.lib.converters.prefix_guard`). Either counts what it drops by reason on the top level's
+status ports (docs/protocol.md).
 """
 
 from __future__ import annotations
@@ -15,11 +17,18 @@ from pathlib import Path
 
 from rfc.ir.infrastructure import Converter
 from rfc.lib.converters.buffers import Buffer
+from rfc.lib.converters.chunk_length import dma_tap, dma_tap_ports, length_port
 from rfc.lib.converters.malformed import DROP_REASONS, counter_name, status_port
 from rfc.lib.converters.plan import plan
 from rfc.lib.converters.ports import Side
+from rfc.lib.converters.prefix_guard import (
+    DECLARED,
+    checking_plan,
+    prefix_guard,
+    prefix_guard_ports,
+)
 from rfc.lib.converters.steps import Plan
-from rfc.lower.system.components import Component, gate_component, guard_component
+from rfc.lower.system.components import Component, convert, gate_component, guard_component
 from rfc.lower.system.interfaces import MESSAGE
 from rfc.lower.system.top import Interface, Terminal, TopBuilder
 from rfc.messages.limits import Limits
@@ -27,6 +36,9 @@ from rfc.passes.check_hardware import subscriber_guard
 
 #: Joins a converter's DMA side to the manager: (builder, cell label, converter, side).
 DmaWiring = Callable[[TopBuilder, str, Converter, Side], None]
+#: The top level's DMA stream into the manager, which prefix guards read chunk headers from.
+MM2S = "s_axis_mm2s"
+STREAM = ("tdata", "tkeep", "tvalid", "tready", "tlast")
 
 
 class SubscriberGuards:
@@ -44,6 +56,7 @@ class SubscriberGuards:
         self.components: list[Component] = []
         self.buffers: dict[str, tuple[Buffer, ...]] = {}
         self._gate: Component | None = None
+        self._tapped: dict[int, str] = {}  # prefix guards by subscriber id
 
     def protect(
         self,
@@ -65,6 +78,39 @@ class SubscriberGuards:
             return self._gated(builder, label, interface, converter.id)
         self._guard(builder, label, converter, chosen, guard, wire_dma)
         return interface
+
+    def dma_input(self, builder: TopBuilder, manager: Terminal) -> None:
+        """Join the top level's DMA stream to the manager's input `manager` (its group).
+
+        With prefix guards the stream passes a tap that reads each chunk's declared length for
+        them (`rfc.lib.converters.chunk_length.dma_tap`); the tap adds no register.
+        """
+        if not self._tapped:
+            for signal in STREAM:
+                builder.connect(
+                    Terminal(manager.cell, f"{manager.port}_{signal}"),
+                    builder.netlist.port(f"{MM2S}_{signal}"),
+                )
+            return
+        cell, ids = "chunk_tap", sorted(self._tapped)
+        ports = dma_tap_ports(self.width // 8, ids)
+        tap = convert(f"{self.prefix}_dma_tap", ports, dma_tap, self.directory,
+                      "chunk lengths for the prefix guards (rfc)", subscribers=ids)  # fmt: skip
+        self.components.append(tap)
+        builder.cell(cell, tap.entity)
+        for signal in STREAM:
+            dma = builder.netlist.port(f"{MM2S}_{signal}")
+            builder.connect(Terminal(cell, f"s_axis_{signal}"), dma)
+            tap_out = Terminal(cell, f"m_axis_{signal}")
+            manager_in = Terminal(manager.cell, f"{manager.port}_{signal}")
+            if signal == "tready":
+                builder.wire(manager_in, tap_out)  # the manager's ready, back through the tap
+            else:
+                builder.wire(tap_out, manager_in)
+        for ident in ids:
+            builder.wire(
+                Terminal(cell, length_port(ident)), Terminal(self._tapped[ident], DECLARED)
+            )
 
     def _gated(
         self, builder: TopBuilder, label: str, interface: Interface, subscriber: int
@@ -92,7 +138,15 @@ class SubscriberGuards:
         wire_dma: DmaWiring,
     ) -> None:
         cell = f"{label}_guard"
-        component = guard_component(converters, guard.words, self.directory, cell)
+        checking = checking_plan(converters)
+        if checking is None:
+            component = guard_component(converters, guard.words, self.directory, cell)
+        else:
+            what = f"prefix check of {checking.layout.display_name} frames (rfc)"
+            ports = prefix_guard_ports(checking.width)
+            component = convert(cell, ports, prefix_guard, self.directory, what,
+                                checking=checking, depth=guard.words)  # fmt: skip
+            self._tapped[converter.id] = cell
         self.components.append(component)
         self.buffers[converter.block] = (guard,)
         builder.cell(cell, component.entity)

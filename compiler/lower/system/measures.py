@@ -69,8 +69,10 @@ def buffers_section(system: SystemHardware) -> ReportSection:
         "A publisher takes a message's strings and sequences only after its other fields (it "
         "needs every length for the frame length), so each gets a FIFO that holds one message "
         "at the project's maxima. A subscriber that hands strings or sequences on holds each "
-        "frame whole (`(whole frame)`) until it is checked, so that a malformed one is dropped "
-        f"before any of it is handed on. Together at most {total} block RAMs of 36 Kb "
+        "frame whole (`(whole frame)`), or only its bytes before a last primitive sequence "
+        "(`(frame before 'data')`, checked against the size its chunk header declares), until "
+        "it is checked, so that a malformed one is dropped before any of it is handed on. "
+        f"Together at most {total} block RAMs of 36 Kb "
         "(synthesis may put the small ones in LUT RAM; an xc7z020 has 140); lower the maxima "
         "to shrink them.",
         "",

@@ -141,7 +141,7 @@ def test_an_hls_function_with_the_wrong_arguments_is_refused_at_its_line(tmp_pat
 def test_hls_structs_and_streams_are_refused_in_the_logic_naming_the_argument(tmp_path):
     # small images: buffers within the part's block RAM, so the HLS cores are what is refused
     shutil.copytree(ROOT / "examples/image_pipeline", tmp_path / "images")
-    spec = tmp_path / "images/ImagePipeline.yaml"
+    spec = tmp_path / "images/ImagePipeline_hls.yaml"
     spec.write_text(spec.read_text().replace("data: 6220800", "data: 4096"))
     message = refused(spec, tmp_path / "b")
     assert "takes message structs and streams ('rgb_t rgb')" in message
@@ -183,8 +183,8 @@ def test_buffers_beyond_the_parts_block_ram_are_refused_naming_the_largest(tmp_p
             text = "\n".join(line for line in text.splitlines() if "maxima:" not in line)
         (tmp_path / name).write_text(text)
     message = refused(tmp_path / "MultiType.yaml", tmp_path / "b")
-    # 2,308 for the publishers' buffers, 2,311 for the subscribers' frame guards
-    assert "the logic's buffers need 4,619 block RAMs of 36 Kb at the project's maxima" in message
+    # 2,308 for the publishers' buffers, 1,031 for the subscribers' frame guards
+    assert "the logic's buffers need 3,339 block RAMs of 36 Kb at the project's maxima" in message
     assert "more than the xc7z020clg400-1's 140; the largest is the frame guard of 'Scan_sub'" in (
         message
     )

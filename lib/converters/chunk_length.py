@@ -1,0 +1,116 @@
+"""The declared length of a subscriber's frames, read from the PS→PL chunk headers.
+
+The manager strips each chunk's header (docs/protocol.md: ``u16 id``, ``u16 flags``, ``u32
+length``) before the payload reaches a subscriber, so a subscriber cannot know a frame's length
+before its ``tlast``. `dma_tap` sits between the DMA and the manager, passes the stream through
+unchanged (no register, no cycle) and holds, per subscriber it serves, the ``length`` of the
+last header whose ``id`` is that subscriber's (`chunk_length`). The manager routes a chunk's
+payload without buffering it, so the next header passes only after the previous chunk's last
+beat was taken: the length is the current frame's when the frame's first beat is taken (the
+prefix guard keeps it from then on).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+from myhdl import Signal, always_comb, always_seq, block, intbv
+
+from rfc.lib.converters.ports import Direction, Port, PortRole
+
+#: Bytes of a chunk header, and where its fields sit (docs/protocol.md).
+HEADER_BYTES = 8
+#: Bits of the header's length field.
+LENGTH_BITS = 32
+
+
+def length_port(subscriber: int) -> str:
+    """The tap's output holding the declared length of subscriber `subscriber`'s frames."""
+    return f"length_sub{subscriber}"
+
+
+def dma_tap_ports(width: int, subscribers: Sequence[int]) -> list[Port]:
+    """The tap's ports for a bus of `width` bytes serving `subscribers`, in declaration order."""
+    ports = [Port("clk", 1, Direction.IN, PortRole.CLOCK), Port("rst", 1, Direction.IN,
+             PortRole.RESET)]  # fmt: skip
+    for bus, out, into in (
+        ("s_axis", Direction.IN, Direction.OUT),
+        ("m_axis", Direction.OUT, Direction.IN),
+    ):
+        ports += [
+            Port(f"{bus}_tdata", 8 * width, out, PortRole.TDATA, bus),
+            Port(f"{bus}_tkeep", width, out, PortRole.TKEEP, bus),
+            Port(f"{bus}_tvalid", 1, out, PortRole.TVALID, bus),
+            Port(f"{bus}_tready", 1, into, PortRole.TREADY, bus),
+            Port(f"{bus}_tlast", 1, out, PortRole.TLAST, bus),
+        ]
+    return ports + [
+        Port(length_port(s), LENGTH_BITS, Direction.OUT, PortRole.FIELD) for s in subscribers
+    ]
+
+
+@block
+def dma_tap(subscribers: Sequence[int], **ports: Any) -> Any:
+    """The DMA stream passed on, and each subscriber's declared length; `ports`: `dma_tap_ports`."""
+    s_data, s_keep, s_valid, s_ready, s_last = (
+        ports[f"s_axis_{n}"] for n in ("tdata", "tkeep", "tvalid", "tready", "tlast")
+    )
+    m_data, m_keep, m_valid, m_ready, m_last = (
+        ports[f"m_axis_{n}"] for n in ("tdata", "tkeep", "tvalid", "tready", "tlast")
+    )
+
+    @always_comb
+    def through() -> None:
+        m_data.next = s_data
+        m_keep.next = s_keep
+        m_valid.next = s_valid
+        m_last.next = s_last
+        s_ready.next = m_ready
+
+    lengths = [
+        chunk_length(ports["clk"], ports["rst"], ident, s_data, s_valid, m_ready, s_last,
+                     ports[length_port(ident)])
+        for ident in subscribers
+    ]  # fmt: skip
+    return through, lengths
+
+
+@block
+def chunk_length(
+    clk: Any, rst: Any, ident: int, tdata: Any, tvalid: Any, tready: Any, tlast: Any, length: Any
+) -> Any:
+    """Hold in `length` the length field of the last chunk header for subscriber `ident`.
+
+    Every chunk starts with its header (after reset and after each ``tlast``); a header spans
+    ``8 / bytes per beat`` beats.
+    """
+    lanes = len(tdata) // 8
+    beats = max(1, HEADER_BYTES // lanes)
+    bits = 8 * lanes
+    beat = Signal(intbv(0, min=0, max=beats + 1))  # `beats`: in the payload
+    stored = Signal(intbv(0)[8 * HEADER_BYTES :])
+    word = Signal(intbv(0)[8 * HEADER_BYTES :])
+
+    @always_comb
+    def assemble() -> None:
+        assembled = intbv(0)[8 * HEADER_BYTES :]
+        assembled[:] = stored
+        for index in range(beats):
+            if beat == index:
+                assembled[(index + 1) * bits : index * bits] = tdata[bits:0]
+        word.next = assembled
+
+    @always_seq(clk.posedge, reset=rst)
+    def follow() -> None:
+        if tvalid and tready:
+            if tlast:
+                beat.next = 0
+            elif beat < beats:
+                beat.next = beat + 1
+            if beat < beats:
+                stored.next = word
+            if beat == beats - 1 and word[16:0] == ident:
+                length.next = word[HEADER_BYTES * 8 : HEADER_BYTES * 8 - LENGTH_BITS]
+
+    return assemble, follow

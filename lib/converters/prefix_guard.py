@@ -1,0 +1,289 @@
+"""A frame guard that holds only the frame's prefix, for messages that end in one big sequence.
+
+The whole-frame guard (`rfc.lib.converters.guard`) needs a buffer of the largest frame: about
+1,500 block RAMs of 36 Kb for a full-HD sensor_msgs/Image, ten times an xc7z020. When the
+message's last field is a primitive sequence (``uint8[] data``) and no sequence of messages or
+strings comes before it, every length of the frame is known once the sequence starts. This
+guard then holds only the bytes up to there: a checker (a second subscriber that parses every
+field, all its outputs taken at once) reads them while they are stored, and when it starts the
+sequence the guard compares the message's size (the frame-length circuit of its lengths) with
+the frame's size its chunk header declared (`rfc.lib.converters.chunk_length.dma_tap`):
+
+- the checker already found the frame malformed (a string over its maximum or without its
+  NUL, a sequence over its maximum, a wrong CDR encapsulation): dropped, its reason counted;
+- the declared size is shorter than the message (``truncated``) or longer than the message
+  and ROS 2's padding to 4 (``trailing``): dropped;
+- else the stored prefix goes to the subscriber and the rest of the frame follows it straight
+  from the bus, a beat per cycle.
+
+A frame that ends before its last sequence starts is checked whole, as the whole-frame guard
+does. What the check cannot see is a DMA that ends the chunk before (or after) the length its
+header declares: the subscriber still finds that frame truncated (or trailing) at its end and
+raises ``msg_error``, but part of the sequence has reached the consumer by then.
+"""
+
+from __future__ import annotations
+
+from enum import IntEnum
+from typing import Any
+
+from myhdl import ResetSignal, Signal, always, always_comb, always_seq, block, intbv
+
+from rfc.lib.converters.chunk_length import LENGTH_BITS
+from rfc.lib.converters.frame_length import frame_length_circuit, length_formula
+from rfc.lib.converters.guard import guard_ports, held_high
+from rfc.lib.converters.malformed import DROP_REASONS, Reason, counter_name, reason_counter
+from rfc.lib.converters.plan import plan as make_plan
+from rfc.lib.converters.ports import (
+    COUNTER_BITS,
+    REASON_BITS,
+    Direction,
+    Port,
+    PortRole,
+    Side,
+    ports_of,
+)
+from rfc.lib.converters.ram import ram
+from rfc.lib.converters.steps import End, Loop, Payload, Plan
+from rfc.lib.converters.subscriber import rfc_subscriber
+from rfc.lib.converters.toplevel import port_signals
+from rfc.messages.selection import select
+
+#: Beats beyond the longest prefix the buffer holds: the checker emits the sequence's first
+#: beat only once it has a beat's worth of it, a beat or two after the sequence starts.
+SLACK_BEATS = 4
+#: The port giving the frame's size as the chunk header declared it.
+DECLARED = "frame_length"
+
+
+class _State(IntEnum):
+    STORE = 0  # taking the prefix into the buffer and the checker
+    REPLAY = 1  # sending the stored beats to the subscriber
+    PASS = 2  # the rest of the frame, straight from the bus
+    DROP = 3  # consuming the rest of a rejected frame
+
+
+def checking_plan(converters: Plan) -> Plan | None:
+    """The checker's plan (every field parsed and given out) when a prefix suffices, else None.
+
+    A prefix suffices when the frame's size follows from top-level lengths and its last field
+    is a primitive sequence with no sequence of messages or strings in the message.
+    """
+    checking = make_plan(select(converters.layout), 8 * converters.width, converters.limits)
+    steps = checking.steps
+    last = steps[-2] if len(steps) >= 2 and isinstance(steps[-1], End) else None
+    if (
+        checking.store_and_forward
+        or any(isinstance(s, Loop) for s in steps)
+        or not isinstance(last, Payload)
+        or last.terminator
+        or not last.stream
+    ):
+        return None
+    return checking
+
+
+def prefix_guard_ports(width: int) -> list[Port]:
+    """The guard's ports for a bus of `width` bytes: the frame guard's, and the declared size."""
+    ports = guard_ports(width)
+    counters = len(ports) - len(DROP_REASONS)  # the streams, then the counters
+    declared = Port(DECLARED, LENGTH_BITS, Direction.IN, PortRole.FIELD)
+    return [*ports[:counters], declared, *ports[counters:]]
+
+
+@block
+def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
+    """Check each frame's prefix before it reaches the subscriber; `ports`: `prefix_guard_ports`.
+
+    Args:
+        checking: The checker's plan (`checking_plan`).
+        depth: Beats the buffer holds: the longest frame whose last sequence is empty, and
+            `SLACK_BEATS`.
+        ports: One signal per name of `prefix_guard_ports`.
+    """
+    clk, rst = ports["clk"], ports["rst"]
+    s_tdata, s_tkeep, s_tvalid, s_tready, s_tlast = (
+        ports[f"s_axis_{n}"] for n in ("tdata", "tkeep", "tvalid", "tready", "tlast")
+    )
+    m_tdata, m_tkeep, m_tvalid, m_tready, m_tlast = (
+        ports[f"m_axis_{n}"] for n in ("tdata", "tkeep", "tvalid", "tready", "tlast")
+    )
+    header = ports[DECLARED]
+    declared = Signal(intbv(0)[LENGTH_BITS:])  # taken with the frame's first beat
+    last = checking.steps[-2]
+    assert isinstance(last, Payload)
+    width = checking.width
+    full_keep = (1 << width) - 1
+    state = Signal(intbv(0, min=0, max=len(_State)))
+    written = Signal(intbv(0, min=0, max=depth + 1))
+    read = Signal(intbv(0, min=0, max=depth + 1))
+    ended, overflow = Signal(bool(0)), Signal(bool(0))
+    last_keep = Signal(intbv(0)[width:])
+    out_valid, out_last = Signal(bool(0)), Signal(bool(0))
+    w_enable, r_enable, taken = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
+    address = Signal(intbv(0, min=0, max=max(2, depth)))
+    r_address = Signal(intbv(0, min=0, max=max(2, depth)))
+    r_data = Signal(intbv(0)[8 * width :])
+    c_valid, c_ready = Signal(bool(0)), Signal(bool(0))
+    drop, reason = Signal(bool(0)), Signal(intbv(0)[REASON_BITS:])
+    decided = Signal(bool(0))
+    c_rst = ResetSignal(rst.active, active=rst.active, isasync=rst.isasync)
+    allowed = Signal(intbv(0)[LENGTH_BITS + 2 :])
+
+    checker = port_signals(ports_of(checking, Side.SUBSCRIBER))
+    readies = [checker[p.name] for p in ports_of(checking, Side.SUBSCRIBER)
+               if p.direction is Direction.IN]  # fmt: skip
+    verdict, failed = checker["msg_valid"], checker["msg_error"]
+    started = checker[f"{last.stream}_tvalid"]
+    cause = Signal(intbv(0)[REASON_BITS:])
+    parser = rfc_subscriber(
+        checking,
+        clk=clk,
+        rst=c_rst,
+        s_axis_tdata=s_tdata,
+        s_axis_tkeep=s_tkeep,
+        s_axis_tvalid=c_valid,
+        s_axis_tready=c_ready,
+        s_axis_tlast=s_tlast,
+        error_count=Signal(intbv(0)[COUNTER_BITS:]),
+        error_reason=cause,
+        **checker,
+    )
+    counts = {s.port: checker[s.port] for s in length_formula(checking).stages if s.port}
+    size = Signal(intbv(0)[LENGTH_BITS + 2 :])
+    sizing = frame_length_circuit(checking, counts, size)
+    storing, replaying, passing, dropping = (int(s) for s in _State)
+    maximum, truncated, trailing = int(Reason.MAXIMUM), int(Reason.TRUNCATED), int(Reason.TRAILING)
+
+    @always_comb
+    def take() -> None:
+        taking = state == storing and c_rst != c_rst.active and not ended
+        c_valid.next = taking and s_tvalid
+        taken.next = taking and s_tvalid and c_ready
+        w_enable.next = taking and s_tvalid and c_ready and written < depth
+        if state == passing:
+            s_tready.next = m_tready
+        elif state == dropping:
+            s_tready.next = 1
+        else:
+            s_tready.next = taking and c_ready
+        address.next = 0
+        if written < depth:
+            address.next = written
+        r_address.next = 0
+        if read < depth:
+            r_address.next = read
+        r_enable.next = state == replaying and read < written and (not out_valid or m_tready)
+
+    @always_comb
+    def cdr_pad() -> None:  # ROS 2 may pad the frame to a multiple of 4
+        allowed.next = size
+        if size[2:0] != 0:
+            allowed.next = size + 4 - size[2:0]
+
+    @always_comb
+    def no_pad() -> None:
+        allowed.next = size
+
+    pad = cdr_pad if checking.is_cdr else no_pad
+
+    @always_comb
+    def judge() -> None:
+        # Once the checker starts the last sequence every length is known; a frame that ends
+        # before is judged by the checker alone, as a whole.
+        judging = state == storing and c_rst != c_rst.active
+        decided.next = judging and (verdict or started)
+        ok = False
+        reason.next = maximum
+        if failed:
+            reason.next = cause
+        elif overflow:
+            reason.next = maximum
+        elif verdict:
+            ok = True
+        elif declared < size:
+            reason.next = truncated
+        elif declared > allowed:
+            reason.next = trailing
+        else:
+            ok = True
+        drop.next = judging and (verdict or started) and not ok
+
+    @always_comb
+    def give() -> None:
+        if state == passing:
+            m_tdata.next = s_tdata
+            m_tkeep.next = s_tkeep
+            m_tvalid.next = s_tvalid
+            m_tlast.next = s_tlast
+        else:
+            m_tdata.next = r_data
+            m_tvalid.next = out_valid
+            m_tlast.next = out_last
+            m_tkeep.next = full_keep
+            if out_last:
+                m_tkeep.next = last_keep
+
+    @always(clk.posedge)
+    def clear_checker() -> None:
+        # the checker starts afresh for every frame (a register: no glitch reaches its reset)
+        c_rst.next = rst == rst.active or state != storing or decided
+
+    @always_seq(clk.posedge, reset=rst)
+    def control() -> None:
+        if state == storing:
+            if taken:
+                if written == 0 and not overflow:
+                    declared.next = header
+                if written < depth:
+                    written.next = written + 1
+                else:
+                    overflow.next = True
+                if s_tlast:
+                    last_keep.next = s_tkeep
+                    ended.next = True
+            if decided:
+                if drop:
+                    if ended or verdict or (taken and s_tlast):
+                        state.next = storing
+                        written.next = 0
+                        read.next = 0
+                        ended.next = False
+                        overflow.next = False
+                    else:
+                        state.next = dropping
+                else:
+                    state.next = replaying
+                    read.next = 0
+        elif state == replaying:
+            if r_enable:
+                read.next = read + 1
+                out_valid.next = True
+                out_last.next = ended and read + 1 == written
+            elif m_tready:
+                out_valid.next = False
+            if out_valid and m_tready and read == written:
+                out_valid.next = False
+                out_last.next = False
+                if ended:
+                    state.next = storing
+                    written.next = 0
+                    read.next = 0
+                    ended.next = False
+                    overflow.next = False
+                else:
+                    state.next = passing
+        elif s_tvalid and s_tready and s_tlast:  # passing or dropping: the frame's end
+            state.next = storing
+            written.next = 0
+            read.next = 0
+            ended.next = False
+            overflow.next = False
+
+    memory = ram(clk, w_enable, address, s_tdata, r_enable, r_address, r_data, depth)
+    counters = [
+        reason_counter(clk, rst, drop, drop, reason, ports[counter_name(r)], int(r))
+        for r in DROP_REASONS
+    ]
+    held = [held_high(clk, rst, ready) for ready in readies]  # the checker takes everything
+    return parser, sizing, take, pad, judge, give, clear_checker, control, memory, counters, held

@@ -85,7 +85,7 @@ def status_inserter(
     if count:
 
         @always_comb
-        def frame():
+        def assemble():
             assembled = intbv(0)[bits:]
             assembled[16:0] = STATUS_ID
             assembled[32:16] = flags
@@ -96,7 +96,7 @@ def status_inserter(
     else:
 
         @always_comb
-        def frame():
+        def assemble():
             assembled = intbv(0)[bits:]
             assembled[16:0] = STATUS_ID
             assembled[32:16] = flags
@@ -118,7 +118,7 @@ def status_inserter(
             s_tready.next = 0
 
     @always_seq(clk.posedge, reset=rst)
-    def sequence():
+    def advance():
         wanted = pending or request
         if state == t_state.FORWARD:
             between = not inside
@@ -139,4 +139,4 @@ def status_inserter(
                 beat.next = beat + 1
         pending.next = wanted
 
-    return frame, drive_outputs, sequence
+    return assemble, drive_outputs, advance

@@ -68,8 +68,8 @@ def test_the_report_lists_the_gate_and_the_guard_in_front_of_their_subscribers(t
         assert result.returncode == 0, result.stderr
         report = (folder / "build" / "report.md").read_text()
         latencies = report.split("## Latencies")[1].split("\n## ")[0]
-        rows[message] = re.findall(r"^\| (drop gate|frame guard) \| `sub` \| ([^|]+?) \|", latencies,
-                                   re.MULTILINE)  # fmt: skip
+        row = r"^\| (drop gate|frame guard) \| `sub` \| ([^|]+?) \|"
+        rows[message] = re.findall(row, latencies, re.MULTILINE)
     assert rows[POINT] == [("drop gate", "0")]
     design = compile_spec(folder / "spec.yaml")
     (converter,) = design.infrastructure.subscribers

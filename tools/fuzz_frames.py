@@ -34,7 +34,13 @@ import numpy as np
 from rfc.messages.codec import FrameError, decode, encode
 from rfc.messages.layout import FieldKind, Layout, flatten
 from rfc.messages.limits import Limits
-from rfc.messages.rosbags_adapter import MessageTypes, message_types, read_bag, write_bag
+from rfc.messages.rosbags_adapter import (
+    MessageTypes,
+    Middleware,
+    message_types,
+    read_bag,
+    write_bag,
+)
 from rfc.runtime.layout import PRIMITIVE_DTYPES
 
 #: Types with strings, sequences of primitives and of strings, fixed arrays, and none of them.
@@ -136,6 +142,21 @@ def accepted(layout: Layout, frame: bytes) -> bool:
     return MAXIMA.beyond(layout, values) is None
 
 
+def made_frames(
+    types: MessageTypes, layout: Layout, message: str, frames: int, rng: random.Random
+) -> list[tuple[str, bytes]]:
+    """Random frames of `message`, each with the kind of damage it got."""
+    ros2 = types.middleware is Middleware.ROS2
+    kinds = [k for k in KINDS if ros2 or k != "encoding"]
+    made = []
+    for _ in range(frames):
+        kind = rng.choice(["valid", *kinds])  # about one frame in three valid
+        values = random_values(layout, rng, longer=kind == "lengthened")
+        frame = types.serialize(types.deserialize(encode(layout, values), message), message)
+        made.append((kind, damaged(frame, kind, ros2, rng)))
+    return made
+
+
 def run_round(
     folder: Path, middleware: str, width: int, message: str, frames: int, rng: random.Random
 ) -> tuple[bool, Counter[str], str]:
@@ -144,13 +165,7 @@ def run_round(
     types: MessageTypes = message_types(middleware.lower())
     layout = flatten(types, message)
     ros2 = middleware == "ROS2"
-    kinds = [k for k in KINDS if ros2 or k != "encoding"]
-    made = []
-    for _ in range(frames):
-        kind = rng.choice(["valid", *kinds])  # about one frame in three valid
-        values = random_values(layout, rng, longer=kind == "lengthened")
-        frame = types.serialize(types.deserialize(encode(layout, values), message), message)
-        made.append((kind, damaged(frame, kind, ros2, rng)))
+    made = made_frames(types, layout, message, frames, rng)
     expected, implied, refused, flipped = [], Counter(), 0, 0
     for kind, frame in made:
         if accepted(layout, frame):

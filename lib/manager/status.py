@@ -15,10 +15,8 @@ from typing import Any
 
 from myhdl import Signal, always_comb, always_seq, block, enum, intbv
 
+from rfc.lib.converters.ports import COUNTER_BITS
 from rfc.lib.manager.header import FLAG_END, FLAG_START, STATUS_ID, BusGeometry
-
-#: Bits of one counter in the answer.
-COUNTER_BITS = 32
 
 
 def status_length(counters: int) -> int:

@@ -175,10 +175,16 @@ class Runtime:
                 self.account.drop(name, "unmatched", accelerator.waiting())
 
     def logic_drops(self, counts: Mapping[tuple[int, str], int]) -> None:
-        """Count what the logic's subscribers dropped, by (subscriber id, reason) as it reports."""
+        """Take what the logic's subscribers dropped, by (subscriber id, reason) as it reports.
+
+        The logic counts from its reset, so a reading replaces the previous one.
+        """
         for (subscriber, reason), count in counts.items():
+            key = (self.plan.subscriber_names[subscriber], f"logic:{reason}")
             if count:
-                self.account.drop(self.plan.subscriber_names[subscriber], f"logic:{reason}", count)
+                self.account.dropped[key] = count
+            else:
+                self.account.dropped.pop(key, None)
 
     def _deliver(
         self, routes: Iterable[Route], data: bytes, stamp: int, now: int, out: list[Published]

@@ -29,10 +29,11 @@ from pathlib import Path
 
 import cocotb
 from cocotb.clock import Clock
-from cocotb.triggers import ClockCycles, Event, Timer
+from cocotb.triggers import ClockCycles, Event, SimTimeoutError, Timer, with_timeout
 from cocotbext.axi import AxiStreamBus, AxiStreamSink, AxiStreamSource
 
 from rfc.driver import compile_spec
+from rfc.lib.converters.malformed import DROP_REASONS, status_port
 from rfc.lower.runtime_plan import DesignPlan
 from rfc.messages.rosbags_adapter import message_types, read_bag
 from rfc.runtime.arrivals import IDLE_FRACTION, ArrivalClock
@@ -40,7 +41,7 @@ from rfc.runtime.core import Published, QueueConfig, QueuePolicy, Runtime
 from rfc.runtime.protocol import Chunk
 from rfc.runtime.records import write_records
 from rfc.runtime.stall import AnswerWait, StallError, StallWatch, largest_output, pending_work
-from rfc.runtime.status import read_status
+from rfc.runtime.status import decode_status, is_status, status_request
 
 
 class _Replay:
@@ -54,6 +55,7 @@ class _Replay:
         self.work = Event()
         self.sending: Chunk | None = None
         self.received_transfers = 0
+        self.status_read = Event()
         self.watch = StallWatch(
             job["stall_cycles"], len(dut.s_axis_mm2s_tkeep), largest_output(runtime)
         )
@@ -100,6 +102,11 @@ class _Replay:
             frame = await self.sink.recv()
             self.received_transfers += 1
             self.watch.completed(self.cycles(), len(frame.tdata))
+            if is_status(bytes(frame.tdata)):
+                names = self.runtime.plan.subscriber_names
+                self.runtime.logic_drops(decode_status(bytes(frame.tdata), names))
+                self.status_read.set()
+                continue
             self.answer.answered()
             self.published += self.runtime.receive(bytes(frame.tdata), self.stamp, self.cycles())
             if self.runtime.waiting():
@@ -161,6 +168,23 @@ class _Replay:
         await self.run_until(1 << 62)
         self.runtime.finish()
 
+    async def read_status(self) -> None:
+        """Ask the logic for its drop counters through the DMA, as the node does.
+
+        Raises:
+            StallError: The logic does not answer.
+        """
+        await self.source.send(status_request().to_bytes())
+        try:
+            await with_timeout(
+                self.status_read.wait(), self.job["stall_cycles"] * self.period_ns, "ns"
+            )
+        except SimTimeoutError:
+            raise StallError(
+                "the logic did not answer the request for its drop counters",
+                hint="rebuild the system: logic built before rfc read the counters lacks it",
+            ) from None
+
     def runtime_topic(self, topic: str) -> str:
         return self.job["topic_names"].get(topic, topic)
 
@@ -186,9 +210,10 @@ async def replay_through_logic(dut: object) -> None:
     cocotb.start_soon(replay.receive())
     try:
         await replay.replay()
+        if hasattr(dut, status_port(0, DROP_REASONS[0])):  # a hand-written test top has none
+            await replay.read_status()
     except StallError as exc:
         Path(job["stalled"]).write_text(json.dumps({"message": exc.message, "hint": exc.hint}))
         return
-    runtime.logic_drops(read_status(dut, runtime.plan.subscriber_names))
     write_records(Path(job["results"]), replay.published)
     Path(job["account"]).write_text(json.dumps(replay.runtime.account.to_json()))

@@ -4,7 +4,10 @@
 callbacks hand it serialized messages (`on_message`); a sender thread gives the PS→PL DMA the
 message the software scheduler picks, one transfer at a time; a receiver thread reads PL→PS
 transfers, and what they complete is published through the callback it was given. The
-`Runtime` is not thread-safe, so one lock guards it; DMA calls block outside the lock.
+`Runtime` is not thread-safe, so one lock guards it; DMA calls block outside the lock. Every
+`status_period` seconds, and once more when it stops, the sender asks the logic for its drop
+counters (`rfc.runtime.status`): they enter the account as ``logic:<reason>``, and a change is
+logged in one line.
 
 `main` is the entry point of the generated node (`rfc.lower.node`): it reads the runtime
 plan beside the node, opens the transport (`rfc.runtime.transports`) and runs rclpy or rospy
@@ -28,12 +31,20 @@ from rfc.runtime.dma_device import DmaChannels
 from rfc.runtime.errors import RfcError
 from rfc.runtime.layout import Middleware
 from rfc.runtime.plan import RuntimePlan, load_plan
+from rfc.runtime.protocol import ProtocolError
+from rfc.runtime.status import decode_status, is_status, status_request
 from rfc.runtime.transports import Device, DeviceOptions, open_transport
 
 #: Seconds the logic may take to accept one PS→PL transfer before the node gives up.
 ANSWER_TIMEOUT = 5.0
+#: Seconds between two readings of the logic's drop counters.
+STATUS_PERIOD = 2.0
 
 Publish = Callable[[Published], None]
+
+
+def _log(line: str) -> None:
+    print(f"rfc node: {line}", file=sys.stderr, flush=True)
 
 
 class NodeCore:
@@ -45,6 +56,10 @@ class NodeCore:
         publish: Called (from any thread) with every message to publish.
         queues: The callback queues.
         clock: Time stamps in nanoseconds (ROS time in the node).
+        screen: Refuse malformed messages on the processor (else the logic drops them).
+        status_period: Seconds between two readings of the logic's drop counters (None: only
+            when asked, `read_status`).
+        log: Where a change of the logic's drop counts is reported.
     """
 
     def __init__(
@@ -54,16 +69,27 @@ class NodeCore:
         publish: Publish,
         queues: QueueConfig | None = None,
         clock: Callable[[], int] = time.time_ns,
+        *,
+        screen: bool = True,
+        status_period: float | None = None,
+        log: Callable[[str], None] = _log,
     ) -> None:
-        self.runtime = Runtime(plan, queues)
+        self.runtime = Runtime(plan, queues, screen=screen)
         self.dma = dma
         self.publish = publish
         self.clock = clock
+        self.log = log
         self._lock = threading.Lock()
         self._work = threading.Condition(self._lock)
         self._stopping = False
         self._writing_since: float | None = None
         self._failure: RfcError | None = None
+        self._status_period = status_period if plan.subscriber_names else None
+        self._status_wanted = False
+        self._status_due = time.monotonic() + (status_period or 0.0)
+        self._status_answers = 0
+        self._answered = threading.Condition(self._lock)
+        self._logic_drops: dict[tuple[str, str], int] = {}
         self._threads = [
             threading.Thread(target=self._send, name="rfc-mm2s", daemon=True),
             threading.Thread(target=self._receive, name="rfc-s2mm", daemon=True),
@@ -87,8 +113,22 @@ class NodeCore:
         for message in published:
             self.publish(message)
 
+    def read_status(self, timeout: float) -> bool:
+        """Ask the logic for its drop counters and wait up to `timeout` s for the answer.
+
+        Returns:
+            Whether the answer came (the counts are then in the account).
+        """
+        with self._lock:
+            answers = self._status_answers
+            self._status_wanted = True
+            self._work.notify()
+            return self._answered.wait_for(lambda: self._status_answers > answers, timeout)
+
     def stop(self, timeout: float = 1.0) -> Account:
-        """Stop sending, close the DMA, and return the account."""
+        """Read the logic's counters once more, stop sending, close the DMA; the account."""
+        if self._status_period is not None and self._threads[0].is_alive():
+            self.read_status(timeout)
         with self._lock:
             self._stopping = True
             self._work.notify_all()
@@ -120,15 +160,53 @@ class NodeCore:
     def _send(self) -> None:
         while True:
             with self._lock:
-                while not self._stopping and not self.runtime.waiting():
-                    self._work.wait()
+                while not (self._stopping or self.runtime.waiting() or self._status_time()):
+                    self._work.wait(self._status_wait())
                 if self._stopping:
                     return
-                chosen = self.runtime.next_transfer()
-            if chosen is not None:
+                if self._status_time():
+                    self._status_wanted = False
+                    if self._status_period is not None:
+                        self._status_due = time.monotonic() + self._status_period
+                    transfer = status_request().to_bytes()
+                else:
+                    chosen = self.runtime.next_transfer()
+                    transfer = chosen[0].to_bytes() if chosen is not None else b""
+            if transfer:
                 self._writing_since = time.monotonic()
-                self.dma.write(chosen[0].to_bytes())
+                try:
+                    self.dma.write(transfer)
+                except OSError:  # the DMA closed under a write: the node is stopping
+                    return
                 self._writing_since = None
+
+    def _status_time(self) -> bool:
+        """Whether the logic's counters are to be read now (the lock held)."""
+        due = self._status_period is not None and time.monotonic() >= self._status_due
+        return self._status_wanted or due
+
+    def _status_wait(self) -> float | None:
+        """Seconds until the next periodic reading, if any (the lock held)."""
+        if self._status_period is None:
+            return None
+        return max(0.0, self._status_due - time.monotonic())
+
+    def _take_status(self, transfer: bytes) -> None:
+        """Put the logic's answer into the account; log what changed (the lock held)."""
+        names = self.runtime.plan.subscriber_names
+        try:
+            counts = decode_status(transfer, names)
+        except ProtocolError as error:
+            self.runtime.account.drop("logic", f"protocol:{error.reason}")
+            return
+        self.runtime.logic_drops(counts)
+        drops = {(names[s], f"logic:{r}"): n for (s, r), n in counts.items() if n}
+        if drops != self._logic_drops:
+            self._logic_drops = drops
+            listed = ", ".join(f"{where} {reason} {n}" for (where, reason), n in drops.items())
+            self.log(f"frames the logic dropped: {listed or 'none'}")
+        self._status_answers += 1
+        self._answered.notify_all()
 
     def _receive(self) -> None:
         while True:
@@ -138,6 +216,10 @@ class NodeCore:
                 return
             if not transfer:
                 return
+            if is_status(transfer):
+                with self._lock:
+                    self._take_status(transfer)
+                continue
             with self._lock:
                 try:
                     published = self.runtime.receive(transfer, self.clock(), self.clock())
@@ -176,6 +258,17 @@ def parse_options(
     )
     parser.add_argument("--depth", type=int, default=queues.get("depth", 10))
     parser.add_argument(
+        "--send-malformed",
+        action="store_true",
+        help="send malformed messages to the logic, which drops and counts them",
+    )
+    parser.add_argument(
+        "--status-period",
+        type=float,
+        default=STATUS_PERIOD,
+        help="seconds between two readings of the logic's drop counters",
+    )
+    parser.add_argument(
         "--answer-timeout",
         type=float,
         default=ANSWER_TIMEOUT,
@@ -192,6 +285,8 @@ def main(plan_path: Path, argv: Sequence[str] | None = None) -> None:
         args, ros_arguments = parse_options(plan, argv)
         if args.depth < 1:
             raise RfcError(f"--depth must be at least 1, not {args.depth}")
+        if not args.status_period > 0:
+            raise RfcError(f"--status-period must be a positive number, not {args.status_period}")
         if plan.middleware is Middleware.ROS1:
             from rfc.runtime.ros1 import spin
         else:

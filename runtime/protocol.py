@@ -22,6 +22,9 @@ from enum import IntFlag
 
 HEADER = struct.Struct("<HHI")
 HEADER_SIZE = HEADER.size
+#: The id of status chunks: the processor's request for the logic's drop counters, and the
+#: logic's answer (`rfc.runtime.status`). No subscriber or publisher has it.
+STATUS_ID = 0xFFFF
 
 
 class ChunkFlags(IntFlag):

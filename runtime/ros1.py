@@ -73,7 +73,15 @@ def spin(
         raw._buff = message.data
         publishers[message.topic].publish(raw)
 
-    core = NodeCore(plan, dma, publish, queues, clock=lambda: rospy.Time.now().to_nsec())
+    core = NodeCore(
+        plan,
+        dma,
+        publish,
+        queues,
+        clock=lambda: rospy.Time.now().to_nsec(),
+        screen=not args.send_malformed,
+        status_period=args.status_period,
+    )
     for topic_input in plan.inputs:
         rospy.Subscriber(
             topic_input.topic,

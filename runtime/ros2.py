@@ -71,7 +71,15 @@ def spin(
     def publish(message: Published) -> None:
         publishers[message.topic].publish(message.data)
 
-    core = NodeCore(plan, dma, publish, queues, clock=lambda: node.get_clock().now().nanoseconds)
+    core = NodeCore(
+        plan,
+        dma,
+        publish,
+        queues,
+        clock=lambda: node.get_clock().now().nanoseconds,
+        screen=not args.send_malformed,
+        status_period=args.status_period,
+    )
     for topic_input in plan.inputs:
         node.create_subscription(
             classes[topic_input.message],

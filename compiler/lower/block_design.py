@@ -13,7 +13,7 @@ from __future__ import annotations
 from collections import defaultdict
 from dataclasses import dataclass
 
-from rfc.lower.netlist import Net, Netlist, NetlistError
+from rfc.lower.netlist import Mode, Net, Netlist, NetlistError
 
 #: The netlist's ports that the infrastructure drives or reads.
 CLOCK = "aclk"
@@ -76,13 +76,18 @@ def block_design(netlist: Netlist) -> BlockDesign:
                 streams[stream].add(f"{label}/{port.removesuffix(net.signal[len(stream) :])}")
                 continue
             pins[net.signal].append(pin)
+    outputs = {p.name for p in netlist.entity.ports if p.mode is Mode.OUT}
     for target, source in netlist.assignments():
+        if target.signal in outputs and source.signal in pins:
+            # a copy of a net onto a top-level output (the status ports, docs/protocol.md):
+            # the processor reads the counters through the manager's status chunk instead
+            continue
         if target.signal != RESET or source.text != f"not {RESET_N}":
             raise NetlistError(f"{target.text} <= {source.text} has no block-design form")
     return BlockDesign(
         cells=tuple(cells),
-        # a net of one pin is a top-level output nothing in the design reads (the status
-        # registers, docs/protocol.md): IP Integrator cannot draw it, so it stays open
+        # a net of one pin is an output nothing in the design reads: IP Integrator cannot
+        # draw it, so it stays open
         nets=tuple(
             (name, tuple(members))
             for name, members in pins.items()

@@ -6,6 +6,8 @@ without a subscriber, flags other than START|END, a payload whose byte count dif
 header's length — are counted in `error_count`; a chunk with a bad header is consumed and
 dropped up to its `tlast`, so the next chunk starts clean. A zero-length message (a ROS 1
 message without fields) reaches its subscriber as one null beat: `tkeep` all zero with `tlast`.
+An empty chunk of id `STATUS_ID` is the processor asking for the drop counters: it raises
+`status_request` for one cycle (`rfc.lib.manager.status` answers it).
 """
 
 from __future__ import annotations
@@ -14,7 +16,7 @@ from typing import Any
 
 from myhdl import Signal, always_comb, always_seq, block, enum, intbv
 
-from rfc.lib.manager.header import FLAG_END, FLAG_START, HEADER_BYTES, BusGeometry
+from rfc.lib.manager.header import FLAG_END, FLAG_START, HEADER_BYTES, STATUS_ID, BusGeometry
 
 #: Width of the saturating protocol-error counter.
 ERROR_COUNT_BITS = 16
@@ -37,6 +39,7 @@ def chunk_demux(
     error_count: Any,
     width: int,
     subscribers: int,
+    status_request: Any = None,
 ) -> Any:
     """Demultiplex PS→PL chunks to `subscribers` converters.
 
@@ -56,6 +59,8 @@ def chunk_demux(
         error_count: intbv[16] out, protocol errors seen (saturating).
         width: Bus width in bits (8, 32, 64).
         subscribers: Number of subscriber converters (≥ 1).
+        status_request: bool out, high for one cycle after a status request chunk (None
+            when nothing answers requests).
     """
     geometry = BusGeometry(width)
     lanes = geometry.lanes
@@ -74,6 +79,8 @@ def chunk_demux(
     received = Signal(intbv(0)[33:])
     beat_bytes = Signal(intbv(0, min=0, max=lanes + 1))
     errors = Signal(intbv(0)[ERROR_COUNT_BITS:])
+    asked = Signal(bool(0))
+    answering = status_request is not None
 
     @always_comb
     def assemble_header():
@@ -121,9 +128,16 @@ def chunk_demux(
     def report():
         error_count.next = errors
 
+    if answering:
+
+        @always_comb
+        def ask():
+            status_request.next = asked
+
     @always_seq(clk.posedge, reset=rst)
     def parse():
         fault = False
+        asked.next = False
         if state == t_state.HEADER:
             if s_tvalid and s_tkeep != full:
                 # Header bytes missing: a truncated chunk.
@@ -145,6 +159,8 @@ def chunk_demux(
                         # A chunk of header only: fine for an empty message.
                         if good and word[64:32] == 0:
                             state.next = t_state.EMPTY
+                        elif word[16:0] == STATUS_ID and word[32:16] == whole and word[64:32] == 0:
+                            asked.next = True
                         else:
                             fault = True
                     elif good:
@@ -175,4 +191,6 @@ def chunk_demux(
         if fault and errors != 2**ERROR_COUNT_BITS - 1:
             errors.next = errors + 1
 
+    if answering:
+        return assemble_header, count_lanes, drive_outputs, report, ask, parse
     return assemble_header, count_lanes, drive_outputs, report, parse

@@ -4,7 +4,9 @@
 lists); the system top level and the Vivado block design want one pin per converter signal. This
 module builds the entity in between: ports ``sub<i>_t*`` towards subscriber i (its ``s_axis``),
 ``pub<j>_t*`` and ``pub<j>_length`` from publisher j (its ``m_axis`` and ``frame_length``), the
-DMA's two streams ``s_axis_mm2s_*`` and ``m_axis_s2mm_*``, and ``error_count``.
+DMA's two streams ``s_axis_mm2s_*`` and ``m_axis_s2mm_*``, ``error_count``, and the drop
+counters of each subscriber's gate or guard, ``status_sub<i>_<reason>``, which the manager
+sends to the processor in a status chunk when asked (`rfc.lib.manager.status`).
 """
 
 from __future__ import annotations
@@ -14,12 +16,14 @@ from typing import Any
 
 from myhdl import ConcatSignal, Signal, always, block, intbv
 
-from rfc.lib.converters.ports import Direction, Port, PortRole
+from rfc.lib.converters.malformed import DROP_REASONS, status_port
+from rfc.lib.converters.ports import COUNTER_BITS, Direction, Port, PortRole
 from rfc.lib.converters.toplevel import top_block
 from rfc.lib.converters.wiring import follow, index_bit
 from rfc.lib.manager.demux import ERROR_COUNT_BITS, chunk_demux
 from rfc.lib.manager.header import BusGeometry
 from rfc.lib.manager.mux import chunk_mux
+from rfc.lib.manager.status import status_inserter
 from rfc.lib.schedulers.spec import AnySchedulerSpec
 
 #: Bits of a publisher's frame-length input.
@@ -75,10 +79,19 @@ def manager_ports(shape: ManagerShape) -> tuple[Port, ...]:
     ]
     for index in range(shape.subscribers):
         ports += _stream(f"sub{index}", shape.width, source=True)
+    ports += [
+        Port(name, COUNTER_BITS, Direction.IN, PortRole.ERROR_COUNT)
+        for name in status_inputs(shape.subscribers)
+    ]
     for index in range(shape.publishers):
         ports += _stream(f"pub{index}", shape.width, source=False)
         ports.append(Port(f"pub{index}_length", LENGTH_BITS, Direction.IN, PortRole.FRAME_LENGTH))
     return tuple(ports)
+
+
+def status_inputs(subscribers: int) -> list[str]:
+    """The counter inputs in the order of the status chunk: by subscriber, then by reason."""
+    return [status_port(i, reason) for i in range(subscribers) for reason in DROP_REASONS]
 
 
 def manager_top(shape: ManagerShape, name: str) -> Any:
@@ -101,6 +114,7 @@ def manager_body(shape: ManagerShape, **ports: Any) -> Any:
     tkeep = Signal(intbv(0)[lanes:])
     tlast = Signal(bool(0))
     tvalid = Signal(intbv(0)[fanout:])
+    request = Signal(bool(0))
     if n_sub:
         tready, single = _vector([ports[f"sub{i}_tready"] for i in range(n_sub)])
         if single is not None:
@@ -113,6 +127,7 @@ def manager_body(shape: ManagerShape, **ports: Any) -> Any:
             ports["s_axis_mm2s_tkeep"], ports["s_axis_mm2s_tvalid"],
             ports["s_axis_mm2s_tready"], ports["s_axis_mm2s_tlast"], tdata, tkeep, tlast,
             tvalid, tready, ports["error_count"], width=width, subscribers=fanout,
+            status_request=request,
         )
     )  # fmt: skip
     for i in range(n_sub):
@@ -122,6 +137,28 @@ def manager_body(shape: ManagerShape, **ports: Any) -> Any:
             follow(tlast, ports[f"sub{i}_tlast"]),
             index_bit(tvalid, i, ports[f"sub{i}_tvalid"]),
         ]
+
+    # The publishers' chunks reach the DMA through the status inserter.
+    out = {
+        "tdata": Signal(intbv(0)[width:]),
+        "tkeep": Signal(intbv(0)[lanes:]),
+        "tvalid": Signal(bool(0)),
+        "tlast": Signal(bool(0)),
+    }
+    out_ready = Signal(bool(0))
+    counters = None
+    if n_sub:
+        counters, single = _vector([ports[name] for name in status_inputs(n_sub)])
+        assert single is None  # four reasons per subscriber
+    parts.append(
+        status_inserter(
+            ports["clk"], ports["rst"], request, counters, out["tdata"], out["tkeep"],
+            out["tvalid"], out_ready, out["tlast"], ports["m_axis_s2mm_tdata"],
+            ports["m_axis_s2mm_tkeep"], ports["m_axis_s2mm_tvalid"],
+            ports["m_axis_s2mm_tready"], ports["m_axis_s2mm_tlast"], width=width,
+            count=len(status_inputs(n_sub)),
+        )
+    )  # fmt: skip
 
     if n_pub:
         inputs = shape.scheduler.n
@@ -140,17 +177,15 @@ def manager_body(shape: ManagerShape, **ports: Any) -> Any:
             chunk_mux(
                 ports["clk"], ports["rst"], gathered["tdata"], gathered["tkeep"],
                 gathered["tvalid"], grant, gathered["tlast"], gathered["length"],
-                ports["m_axis_s2mm_tdata"], ports["m_axis_s2mm_tkeep"],
-                ports["m_axis_s2mm_tvalid"], ports["m_axis_s2mm_tready"],
-                ports["m_axis_s2mm_tlast"], width=width, scheduler=shape.scheduler,
+                out["tdata"], out["tkeep"], out["tvalid"], out_ready, out["tlast"],
+                width=width, scheduler=shape.scheduler,
             )
         )  # fmt: skip
         parts += [index_bit(grant, i, ports[f"pub{i}_tready"]) for i in range(n_pub)]
     else:
         parts.append(
-            silent_output(ports["clk"], ports["m_axis_s2mm_tdata"], ports["m_axis_s2mm_tkeep"],
-                    ports["m_axis_s2mm_tvalid"], ports["m_axis_s2mm_tlast"])
-        )  # fmt: skip
+            silent_output(ports["clk"], out["tdata"], out["tkeep"], out["tvalid"], out["tlast"])
+        )
     return parts
 
 

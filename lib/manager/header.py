@@ -9,6 +9,9 @@ HEADER_BYTES = 8
 #: Flag bits of the header.
 FLAG_START = 1
 FLAG_END = 2
+#: The id of the status chunks (docs/protocol.md): the PS asks with an empty one, the logic
+#: answers with one holding its drop counters. Subscriber and publisher ids stay below it.
+STATUS_ID = 0xFFFF
 
 BUS_WIDTHS = (8, 32, 64)
 

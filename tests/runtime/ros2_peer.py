@@ -5,7 +5,8 @@ messages to publish (hex of their serialized bytes), the output topic and type a
 limit. It waits until the node under test has subscribed and published, then sends one message
 at a time and waits for its answer before the next (not once the node has left the graph), so
 that outputs pair with inputs one by one. Prints a JSON list of the answers (hex; null where
-none came in time).
+none came in time). Optional: ``silent``, the indices of messages that get no answer (the peer
+waits only a moment after them), and ``linger``, seconds to stay on the graph at the end.
 """
 
 import importlib
@@ -35,12 +36,22 @@ def main(job):
     ):
         rclpy.spin_once(node, timeout_sec=0.1)
     answers = []
-    for data in job["messages"]:
+    silent = set(job.get("silent", ()))
+    for index, data in enumerate(job["messages"]):
         publisher.publish(bytes.fromhex(data))
+        if index in silent:
+            end = time.monotonic() + 0.3
+            while time.monotonic() < end:
+                rclpy.spin_once(node, timeout_sec=0.05)
+            answers.append(None)
+            continue
         # until the answer comes, the time is up, or the node has left the graph
         while time.monotonic() < deadline and not received and node.count_publishers(job["output"]):
             rclpy.spin_once(node, timeout_sec=0.05)
         answers.append(received.pop(0).hex() if received else None)
+    end = time.monotonic() + job.get("linger", 0)
+    while time.monotonic() < end:
+        rclpy.spin_once(node, timeout_sec=0.05)
     node.destroy_node()
     rclpy.shutdown()
     print(json.dumps(answers))

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import socket
+import struct
 import subprocess
 import sys
 import threading
@@ -128,3 +129,41 @@ def test_the_node_imports_only_the_runtime_and_its_two_dependencies(tmp_path, ex
     assert {m for m in loaded if m.startswith("rfc.") and not m.startswith("rfc.runtime")} == set()
     assert not loaded & {"myhdl", "cocotb", "typer", "numba", "matplotlib", "rich", "rclpy"}
     assert {"numpy", "rosbags"} <= loaded
+
+
+def test_the_node_reads_the_logics_drop_counters_and_logs_each_change(tmp_path):
+    """A fake logic answers status requests as docs/protocol.md lays the answer out."""
+    design = compiled(tmp_path, "pose_mixed.yaml")
+    plan = DesignPlan(design)
+    ours, theirs = socket.socketpair(socket.AF_UNIX, socket.SOCK_SEQPACKET)
+    subscribers = len(plan.subscriber_names)
+    zero, drops = [0] * 4 * subscribers, [2, 0, 0, 1] + [0] * 4 * (subscribers - 1)
+    readings = iter([zero, drops, zero, zero, drops])
+
+    def answer():
+        while (request := theirs.recv(64)) == struct.pack("<HHI", 0xFFFF, 3, 0):
+            counts = next(readings)
+            theirs.send(struct.pack("<HHI", 0xFFFF, 3, 4 * len(counts)) +
+                        struct.pack(f"<{len(counts)}I", *counts))  # fmt: skip
+        assert request == b""
+
+    logic = threading.Thread(target=answer)
+    logic.start()
+    lines = []
+    dma = FileDma(ours.fileno(), ours.fileno(), 1 << 20)
+    core = NodeCore(plan, dma, lambda _: None, status_period=60, log=lines.append)
+    core.start()
+    assert core.read_status(10)
+    assert lines == []  # nothing dropped yet: nothing to say
+    assert core.read_status(10)
+    first = plan.subscriber_names[0]
+    assert lines == [
+        f"frames the logic dropped: {first} logic:truncated 2, {first} logic:encoding 1"
+    ]
+    assert core.read_status(10)  # back to zero: said once
+    assert core.read_status(10)  # the same again: not said
+    account = core.stop()  # a last reading on the way out; closes the DMA (our end)
+    ours.detach()
+    logic.join(5)
+    assert lines[1:] == ["frames the logic dropped: none", lines[0]]
+    assert account.dropped == {(first, "logic:truncated"): 2, (first, "logic:encoding"): 1}

@@ -196,3 +196,31 @@ def test_a_logic_that_does_not_answer_ends_the_node_with_one_error(quaternion_bu
     log = (tmp_path / "node.log").read_text()
     assert "rfc node: the logic has not taken a PS→PL transfer in 2 s" in log
     assert "Traceback" not in log
+
+
+def test_the_node_reads_what_the_logic_dropped_through_the_status_chunk(quaternion_build, tmp_path):
+    """Damaged frames sent on to the logic (--send-malformed) come back as its drop counts.
+
+    Fast DDS refuses to publish more bytes than a bounded type can hold, so no frame with
+    trailing bytes reaches the node (tests/cli/test_sim_malformed.py sends those through a bag).
+    """
+    valid = orientations(6)
+    damaged = {
+        "truncated": [valid[0][:20], valid[1][:9]],
+        "encoding": [b"\x00\x00" + valid[3][2:]] * 3,  # big-endian CDR: not what the logic reads
+    }
+    frames = [frame for kind in damaged.values() for frame in kind]
+    job = {
+        **quaternion_job([*frames, *valid]),
+        "silent": list(range(len(frames))),
+        "linger": 3,
+    }
+    node = quaternion_build / "sw" / "quaternion_to_euler_node.py"
+    arguments = ["--device", "sim", "--send-malformed", "--status-period", "0.5"]
+    answers = exchange(node, arguments, job, tmp_path)
+    assert answers[len(frames) :] == euler_references(valid)
+    log = (tmp_path / "node.log").read_text()
+    counts = ", ".join(
+        f"orientation_sub logic:{kind} {len(kind_frames)}" for kind, kind_frames in damaged.items()
+    )
+    assert f"rfc node: frames the logic dropped: {counts}" in log, log

@@ -30,7 +30,7 @@ from rfc.lower.system.components import (
     manager_component,
 )
 from rfc.lower.system.guards import SubscriberGuards
-from rfc.lower.system.interfaces import MESSAGE
+from rfc.lower.system.interfaces import MANAGER, MESSAGE
 from rfc.lower.system.stream_marks import StreamMarks
 from rfc.lower.system.top import CLOCK, RESET_N, Interface, Terminal, TopBuilder, wire_connection
 from rfc.messages.limits import Limits
@@ -38,8 +38,6 @@ from rfc.passes.check_hardware import check_buffer_memory
 from rfc.passes.names import snake_identifier as identifier
 from rfc.passes.resolve_scheduler import ResolveScheduler
 
-#: The manager's cell label.
-MANAGER = "manager"
 #: The DMA-side stream groups of the top level (DESIGN.md §5).
 MM2S, S2MM = "s_axis_mm2s", "m_axis_s2mm"
 _STREAM = ("tdata", "tkeep", "tvalid", "tready", "tlast")

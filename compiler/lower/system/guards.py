@@ -6,8 +6,9 @@ consumer sees it. A subscriber that hands strings or sequences on as sub-streams
 guard* in front instead: the frame is checked whole in a buffer before the subscriber sees it
 (`rfc.lib.converters.guard`), or only its bytes before a last primitive sequence, against the
 size its chunk header declared, which the guard reads off the DMA stream into the manager
-(`rfc.lib.converters.prefix_guard`). Either counts what it drops by reason on the top level's
-status ports (docs/protocol.md).
+(`rfc.lib.converters.prefix_guard`). Either counts what it drops by reason; the counts go to the
+manager, which sends them to the processor in a status chunk, and to the top level's status
+ports (docs/protocol.md).
 """
 
 from __future__ import annotations
@@ -29,7 +30,7 @@ from rfc.lib.converters.prefix_guard import (
 )
 from rfc.lib.converters.steps import Plan
 from rfc.lower.system.components import Component, convert, gate_component, guard_component
-from rfc.lower.system.interfaces import MESSAGE
+from rfc.lower.system.interfaces import MANAGER, MESSAGE
 from rfc.lower.system.top import Interface, Terminal, TopBuilder
 from rfc.messages.limits import Limits
 from rfc.passes.check_hardware import subscriber_guard
@@ -158,7 +159,9 @@ class SubscriberGuards:
 
 
 def _status(builder: TopBuilder, cell: str, subscriber: int) -> None:
-    """Put a gate's or guard's counters on the top level's status ports."""
+    """Give a gate's or guard's counters to the manager and to the top level's status ports."""
     for reason in DROP_REASONS:
-        status = builder.netlist.port(status_port(subscriber, reason))
-        builder.connect(Terminal(cell, counter_name(reason)), status)
+        name = status_port(subscriber, reason)
+        count = builder.output(Terminal(cell, counter_name(reason)))
+        builder.connect(Terminal(MANAGER, name), count)
+        builder.netlist.assign(builder.netlist.port(name), count)

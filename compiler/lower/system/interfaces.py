@@ -27,6 +27,8 @@ from rfc.messages.limits import Limits
 
 #: The converter-side name of the message handshake.
 MESSAGE = ROOT
+#: The manager's cell label in the top level.
+MANAGER = "manager"
 
 
 @dataclass(frozen=True)

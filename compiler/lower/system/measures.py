@@ -16,7 +16,12 @@ from rfc.lib.devices import bram36
 from rfc.lower.artifacts import ReportSection
 from rfc.lower.report import markdown_table
 from rfc.lower.system.generate import SystemHardware
-from rfc.lower.system.latency import publisher_latency, subscriber_latency
+from rfc.lower.system.latency import (
+    gate_latency,
+    guard_latency,
+    publisher_latency,
+    subscriber_latency,
+)
 from rfc.toolchain import Resources, module_resources
 
 #: DESIGN.md §12: an accelerator's latency target in cycles.
@@ -28,9 +33,19 @@ def latency_section(design: Design, system: SystemHardware) -> ReportSection:
     infrastructure = design.infrastructure
     assert infrastructure is not None
     rows: list[list[object]] = []
+    gate: list[int | None] = []  # measured once: every gate is the same
     for converter in infrastructure.subscribers:
         beats = math.ceil(converter.max_frame_bytes / (converter.bus_width // 8))
         measured = subscriber_latency(converter, system.limits)
+        guarded = guard_latency(converter, system.limits)
+        if guarded is None:
+            gate = gate or [gate_latency()]
+            rows.append(["drop gate", f"`{converter.block}`", gate[0], "—"])
+        elif measured is None:
+            rows.append(["frame guard", f"`{converter.block}`", guarded[1], "—"])
+        else:
+            cycles = f"{guarded[1]} (subscriber + {guarded[1] - measured})"
+            rows.append(["frame guard", f"`{converter.block}`", cycles, "—"])
         rows.append(["subscriber", f"`{converter.block}`", measured, f"≤ {beats + 2}"])
     for block in design.blocks_of(BlockKind.ACCELERATOR):
         hardware = system.accelerators.get(block.accelerator or "")
@@ -47,10 +62,14 @@ def latency_section(design: Design, system: SystemHardware) -> ReportSection:
         "simulator: subscriber from the first beat to its fields, accelerator from its inputs "
         "to its outputs, publisher from its fields to the last beat (— where rfc cannot "
         "simulate the block: VHDL and HLS accelerators). Targets: DESIGN.md §12 (frame size "
-        "is the largest frame for variable-size messages). A subscriber listed with a "
-        "`(whole frame)` buffer under *Buffer memory* has a frame guard in front, which adds "
-        "the frame's whole transfer and the check's parse before the subscriber's cycles "
-        "(docs/converters.md, Malformed input); they are not included here.",
+        "is the largest frame for variable-size messages). In front of each subscriber, what "
+        "keeps malformed frames from its consumers (docs/converters.md, Malformed input): a "
+        "drop gate behind a subscriber of fixed-size fields, which adds no cycle, or a frame "
+        "guard before one that streams strings or sequences, which holds each frame until a "
+        "copy of the subscriber has parsed it: from the frame's first beat in to its first "
+        "beat out to the subscriber, the subscriber's own cycles on that frame (its beats, one "
+        "a cycle, and a few cycles per string or sequence element) plus a constant; the "
+        "subscriber's cycles then follow.",
         "",
         *markdown_table(["block", "name", "cycles", "target"], rows, (False, False, True, True)),
     ]

@@ -18,11 +18,11 @@ from pathlib import Path
 
 from rfc.errors import RfcError
 from rfc.ir.model import AcceleratorKind, AcceleratorType, Block
-from rfc.ir.model import Port as ModelPort
 from rfc.lib.converters.ports import Direction, Port, PortRole
 from rfc.lib.hls.adapter import AdapterShape
 from rfc.lib.interface import typed_block
-from rfc.lower.hls_signature import ArgumentKind, HlsArgument, read_top_function
+from rfc.lower.hls_ports import core_ports, vitis_directives
+from rfc.lower.hls_signature import read_top_function
 from rfc.lower.netlist import EntityDecl, Mode, PortDecl
 from rfc.lower.system.components import (
     Component,
@@ -38,6 +38,7 @@ from rfc.passes.check_hardware import (
     RESET,
     block_function,
     flat_ports,
+    located,
     takes_interfaces,
     vhdl_entity,
 )
@@ -52,18 +53,26 @@ _HLS_CONTROL = (
     PortDecl("ap_idle", Mode.OUT, 1, True),
     PortDecl("ap_ready", Mode.OUT, 1, True),
 )
-
-
-_ARGUMENT_ORDER = "inputs' fields by value, then outputs' fields by pointer (docs/accelerators.md)"
+#: Prefix of the ap_ctrl wrapper's inputs from the core's outputs.
+_CORE_SIDE = "core_"
 
 
 @dataclass(frozen=True)
 class HlsCore:
-    """An HLS accelerator's core, for the Vitis HLS script: top function and its sources."""
+    """An HLS accelerator's core, for the Vitis HLS script.
+
+    Attributes:
+        accelerator: The accelerator type's name.
+        top: The top function.
+        sources: Its C++ sources.
+        directives: Vitis HLS directives (tcl) that give the core its ports
+            (`rfc.lower.hls_ports.vitis_directives`).
+    """
 
     accelerator: str
     top: str
     sources: tuple[Path, ...]
+    directives: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -232,49 +241,34 @@ def _hls(
 ) -> AcceleratorHardware:
     top = accelerator.top or accelerator.name
     arguments = read_top_function(list(accelerator.sources), top)
-    aggregate = next((a for a in arguments if a.kind is not ArgumentKind.SCALAR), None)
-    if aggregate is not None:
-        raise RfcError(
-            f"HLS top function {top} of accelerator '{accelerator.name}' takes message structs "
-            f"and streams ('{aggregate.ctype} {aggregate.name}'): `rfc sim` C-simulates it, but "
-            "rfc does not wire such cores into the logic yet",
-            location=aggregate.location,
-            hint="simulate the system with `rfc sim`; to build the logic, give the top function "
-            "scalar arguments, or write the accelerator in MyHDL or VHDL",
-        )
-    fields: list[tuple[ModelPort, Pin]] = []
-    for port in block.ports:
-        for pin in ports[port.name]:
-            if pin.role in (PortRole.VALID, PortRole.READY) and pin.group == MESSAGE:
-                continue
-            if pin.role is not PortRole.FIELD or pin.group != MESSAGE:
-                raise _hls_refusal(accelerator, port, pin, "a string or sequence")
-            if pin.port.wire:
-                raise _hls_refusal(accelerator, port, pin, "a bool")
-            fields.append((port, pin))
-    _check_arguments(accelerator, top, arguments, fields)
-    core_ports = list(_HLS_CONTROL)
+    signatures = {port: tuple(pin.signal for pin in pins) for port, pins in ports.items()}
+    mapped = located(
+        lambda: core_ports(accelerator.name, top, arguments, signatures), accelerator.location
+    )
+    by_field = {pin.signal.name: pin for pins in ports.values() for pin in pins}
+    core_decls = list(_HLS_CONTROL)
     shape_outputs: dict[str, list[tuple[str, str, int]]] = {}
     pins: dict[tuple[str, str], tuple[str, str]] = {}
     wires = [("control", n, "core", n) for n in ("ap_start",)]
     wires += [("core", n, "control", n) for n in ("ap_done", "ap_idle", "ap_ready")]
-    for (port, pin), argument in zip(fields, arguments, strict=True):
-        if argument.output:
-            core_ports += [
-                PortDecl(argument.name, Mode.OUT, argument.bits),
-                PortDecl(f"{argument.name}_ap_vld", Mode.OUT, 1, True),
+    for core_port in mapped:
+        pin = by_field[core_port.field]
+        name, bits = core_port.core, core_port.bits
+        if core_port.output:
+            core_decls += [
+                PortDecl(name, Mode.OUT, bits),
+                PortDecl(f"{name}_ap_vld", Mode.OUT, 1, True),
             ]
-            shape_outputs.setdefault(port.name, []).append(
-                (pin.port.name, argument.name, argument.bits)
-            )
+            held = f"{_CORE_SIDE}{name}"  # the wrapper's name: a member's may be the field's
+            shape_outputs.setdefault(core_port.message_port, []).append((pin.port.name, held, bits))
             wires += [
-                ("core", argument.name, "control", argument.name),
-                ("core", f"{argument.name}_ap_vld", "control", f"{argument.name}_ap_vld"),
+                ("core", name, "control", held),
+                ("core", f"{name}_ap_vld", "control", f"{held}_ap_vld"),
             ]
-            pins[(port.name, pin.role_name)] = ("control", pin.port.name)
+            pins[(core_port.message_port, pin.role_name)] = ("control", pin.port.name)
         else:
-            core_ports.append(PortDecl(argument.name, Mode.IN, argument.bits))
-            pins[(port.name, pin.role_name)] = ("core", argument.name)
+            core_decls.append(PortDecl(name, Mode.IN, bits))
+            pins[(core_port.message_port, pin.role_name)] = ("core", name)
     inputs = tuple(p.name for p in block.inputs)
     for port in block.ports:
         pins[(port.name, f"{MESSAGE}_valid")] = ("control", f"{port.name}_valid")
@@ -283,53 +277,19 @@ def _hls(
         inputs, tuple((p.name, tuple(shape_outputs.get(p.name, ()))) for p in block.outputs)
     )
     adapter = adapter_component(shape, directory, f"{entity_name(accelerator)}_ap_ctrl")
-    core = EntityDecl(top, tuple(core_ports), vlnv=f"xilinx.com:hls:{top}:1.0")
+    core = EntityDecl(top, tuple(core_decls), vlnv=f"xilinx.com:hls:{top}:1.0")
     return AcceleratorHardware(
         (adapter,),
         (("core", core), ("control", adapter.entity)),
         tuple(wires),
         pins,
-        HlsCore(accelerator.name, top, tuple(accelerator.sources)),
+        HlsCore(
+            accelerator.name,
+            top,
+            tuple(accelerator.sources),
+            vitis_directives(top, arguments, signatures),
+        ),
     )
-
-
-def _hls_refusal(accelerator: AcceleratorType, port: ModelPort, pin: Pin, what: str) -> RfcError:
-    return RfcError(
-        f"HLS accelerator '{accelerator.name}': port '{port.name}' carries {what} "
-        f"('{pin.role_name}'); rfc connects HLS cores through scalar arguments only",
-        location=accelerator.location,
-        hint=f"exclude it from port '{port.name}', or write the accelerator in MyHDL or VHDL",
-    )
-
-
-def _check_arguments(
-    accelerator: AcceleratorType,
-    top: str,
-    arguments: tuple[HlsArgument, ...],
-    fields: list[tuple[ModelPort, Pin]],
-) -> None:
-    expected = [
-        f"{pin.port.bits}-bit {'output' if port.direction.value == 'out' else 'input'} "
-        f"for {port.name}.{pin.role_name}"
-        for port, pin in fields
-    ]
-    if len(arguments) != len(fields):
-        raise RfcError(
-            f"HLS top function {top} of accelerator '{accelerator.name}' has "
-            f"{len(arguments)} arguments; its messages need {len(fields)}: " + ", ".join(expected),
-            location=arguments[0].location if arguments else accelerator.location,
-            hint=_ARGUMENT_ORDER,
-        )
-    for argument, (port, pin), want in zip(arguments, fields, expected, strict=True):
-        output = port.direction.value == "out"
-        if argument.output != output or argument.bits != pin.port.bits:
-            kind = "output" if argument.output else "input"
-            raise RfcError(
-                f"argument '{argument.name}' of HLS top function {top} is a {argument.bits}-bit "
-                f"{kind}; expected a {want}",
-                location=argument.location,
-                hint=_ARGUMENT_ORDER,
-            )
 
 
 #: Builds the hardware of an accelerator type: (type, a block of it, its pins, output folder).

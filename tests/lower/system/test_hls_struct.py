@@ -1,0 +1,297 @@
+"""An HLS core taking FrankaState as one struct, in the logic, simulated in GHDL.
+
+Vitis HLS is not here, so a stand-in of the core Vitis HLS would export for
+``hls_fold/fold.cpp`` takes its place: the ports the struct is disaggregated into
+(``<argument>_<member>``, one per array element), ``ap_ctrl_hs`` (``ap_start`` sampled when
+idle, ``ap_done``/``ap_ready`` for one cycle), inputs read over 16 cycles and outputs written
+with one-cycle ``_ap_vld`` at different times, as UG1399 describes the protocol. The bytes
+the system publishes must be the C function's, computed here with NumPy from rosbags' messages,
+and the function's own C simulation (`rfc sim`) must agree.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from rfc.driver import compile_spec
+from rfc.lower.system.generate import generate_system
+from rfc.messages.codec import default_values
+from rfc.messages.layout import flatten
+from rfc.messages.rosbags_adapter import message_types, read_bag, write_bag
+from rfc.messages.values import values_to_message
+from rfc.runtime.core import QueueConfig
+from rfc.runtime.hardware import simulate_with_ghdl
+from tests.support.cli import run_rfc
+from tests.support.vendor_check import check_vivado, run_script
+
+ROOT = Path(__file__).resolve().parents[3]
+SPEC = Path(__file__).parent / "hls_fold" / "fold.yaml"
+FRANKA = "franka_msgs/msg/FrankaState"
+POINT = "geometry_msgs/msg/PointStamped"
+#: The arrays the function folds, with the rotation of their first element, per output.
+FOLDS = {
+    "x": {"q": (7, 0)},
+    "y": {"q_d": (7, 0)},
+    "z": {"O_T_EE": (16, 0), "O_T_EE_d": (16, 16), "F_T_EE": (16, 32)},
+}
+
+
+@dataclass(frozen=True)
+class Top:
+    """The logic with the stand-in core, for `simulate_with_ghdl`."""
+
+    top: str
+    sources: list[Path]
+    bus_width: int
+
+
+def stand_in() -> str:
+    """VHDL of the core Vitis HLS would make of ``Fold``, with its disaggregated ports."""
+    arrays = {name: size for fold in FOLDS.values() for name, (size, _) in fold.items()}
+    inputs = [
+        f"state_header_stamp_{s} : in std_logic_vector(31 downto 0);" for s in ("sec", "nanosec")
+    ]
+    inputs += [
+        f"state_{name}_{i} : in std_logic_vector(63 downto 0);"
+        for name, size in arrays.items()
+        for i in range(size)
+    ]
+    outputs = [
+        f"folded_{member} : out std_logic_vector({bits - 1} downto 0) := (others => '0');\n"
+        f"    folded_{member}_ap_vld : out std_logic := '0';"
+        for member, bits in [
+            ("header_stamp_sec", 32),
+            ("header_stamp_nanosec", 32),
+            ("point_x", 64),
+            ("point_y", 64),
+            ("point_z", 64),
+        ]
+    ]
+    words = "\n".join(
+        f"  {name.lower()}({i}) <= unsigned(state_{name}_{i});"
+        for name, size in arrays.items()
+        for i in range(size)
+    )
+    signals = "\n".join(
+        f"  signal {name.lower()} : words(0 to {size - 1});" for name, size in arrays.items()
+    )
+    steps = []
+    for output, fold in FOLDS.items():
+        for name, (size, shift) in fold.items():
+            steps.append(
+                f"        if step < {size} then\n"
+                f"          acc_{output} := acc_{output} xor "
+                f"rotate_left({name.lower()}(step), {shift} + step);\n"
+                "        end if;"
+            )
+    return f"""library ieee;
+use ieee.std_logic_1164.all;
+use ieee.numeric_std.all;
+
+entity Fold is
+  port (
+    ap_clk : in std_logic;
+    ap_rst : in std_logic;
+    ap_start : in std_logic;
+    ap_done : out std_logic := '0';
+    ap_idle : out std_logic;
+    ap_ready : out std_logic := '0';
+    {chr(10).join("    " + line for line in inputs).strip()}
+    {chr(10).join("    " + line for line in outputs).strip().rstrip(";")}
+  );
+end entity;
+
+architecture stand_in of Fold is
+  type words is array (natural range <>) of unsigned(63 downto 0);
+{signals}
+  signal busy : std_logic := '0';
+  signal step : natural range 0 to 31 := 0;
+  signal folds : words(0 to 2) := (others => (others => '0'));
+begin
+{words}
+  ap_idle <= not busy;
+
+  run : process (ap_clk)
+    variable acc_x, acc_y, acc_z : unsigned(63 downto 0);
+  begin
+    if rising_edge(ap_clk) then
+      ap_done <= '0';
+      ap_ready <= '0';
+      folded_header_stamp_sec_ap_vld <= '0';
+      folded_header_stamp_nanosec_ap_vld <= '0';
+      folded_point_x_ap_vld <= '0';
+      folded_point_y_ap_vld <= '0';
+      folded_point_z_ap_vld <= '0';
+      if ap_rst = '1' then
+        busy <= '0';
+      elsif busy = '0' then
+        if ap_start = '1' then
+          busy <= '1';
+          step <= 0;
+          folds <= (others => (others => '0'));
+        end if;
+      else
+        step <= step + 1;
+        acc_x := folds(0);
+        acc_y := folds(1);
+        acc_z := folds(2);
+{chr(10).join(steps)}
+        folds <= (acc_x, acc_y, acc_z);
+        if step = 0 then
+          folded_header_stamp_sec <= state_header_stamp_sec;
+          folded_header_stamp_sec_ap_vld <= '1';
+        elsif step = 9 then
+          folded_header_stamp_nanosec <= state_header_stamp_nanosec;
+          folded_header_stamp_nanosec_ap_vld <= '1';
+        elsif step = 16 then
+          folded_point_x <= std_logic_vector(folds(0));
+          folded_point_y <= std_logic_vector(folds(1));
+          folded_point_z <= std_logic_vector(folds(2));
+          folded_point_x_ap_vld <= '1';
+          folded_point_y_ap_vld <= '1';
+          folded_point_z_ap_vld <= '1';
+          ap_done <= '1';
+          ap_ready <= '1';
+          busy <= '0';
+        end if;
+      end if;
+    end if;
+  end process;
+end architecture;
+"""
+
+
+def franka_bag(path: Path, count: int) -> list[dict[str, np.ndarray]]:
+    """A ROS 1 bag of FrankaState messages with random arrays; returns the arrays."""
+    types = message_types("ros1", msg_paths=(str(ROOT / "examples/franka/msg"),))
+    layout = flatten(types, FRANKA)
+    rng = np.random.default_rng(5)
+    states, data = [], []
+    for index in range(count):
+        values = default_values(layout)
+        values.update({"header.stamp.sec": 100 + index, "header.stamp.nanosec": 7 * index})
+        state = {
+            name: rng.normal(scale=10.0 ** (index - 1), size=size)
+            for fold in FOLDS.values()
+            for name, (size, _) in fold.items()
+        }
+        for name, array in state.items():
+            values.update({f"{name}[{i}]": float(v) for i, v in enumerate(array)})
+        states.append(state)
+        data.append(types.serialize(values_to_message(values, layout, types), FRANKA))
+    write_bag(
+        path,
+        types,
+        {"/franka_state": FRANKA},
+        [("/franka_state", i + 1, d) for i, d in enumerate(data)],
+    )
+    return states
+
+
+def expected_point(state: dict[str, np.ndarray]) -> bytes:
+    """The function's three words, in NumPy: each element's bits rotated, exclusive-ored."""
+    words = []
+    for fold in FOLDS.values():
+        word = np.uint64(0)
+        for name, (_, shift) in fold.items():
+            for i, bits in enumerate(state[name].astype("<f8").view("<u8")):
+                turn = np.uint64(shift + i)
+                rotated = (bits << turn) | (bits >> np.uint64(64) - turn) if shift + i else bits
+                word ^= rotated
+        words.append(word)
+    return np.array(words, dtype="<u8").tobytes()
+
+
+def test_an_hls_core_taking_franka_state_as_a_struct_runs_in_the_logic(tmp_path):
+    states = franka_bag(tmp_path / "in.bag", 3)
+    design = compile_spec(str(SPEC))
+    system = generate_system(design, tmp_path / "hdl")
+    core = tmp_path / "hdl" / "fold_stand_in.vhd"
+    core.write_text(stand_in())
+    package, *parts, top = system.files
+    logic = Top(system.top, [package, core, *parts, top], system.bus_width)
+    (tmp_path / "sim").mkdir()
+    run = simulate_with_ghdl(
+        design, tmp_path / "in.bag", {"/franka_state": "/franka_state"}, logic, tmp_path / "sim",
+        queues=QueueConfig(),
+    )  # fmt: skip
+    types = message_types("ros1")
+    assert [p.topic for p in run.published] == ["/folded"] * len(states)
+    for index, (state, published) in enumerate(zip(states, run.published, strict=True)):
+        message = types.deserialize(published.data, POINT)
+        assert (message.header.stamp.sec, message.header.stamp.nanosec) == (100 + index, 7 * index)
+        assert message.header.frame_id == ""
+        assert published.data[-24:] == expected_point(state)
+    # the function itself, C-simulated by `rfc sim`, gives the same messages
+    out = tmp_path / "c.bag"
+    result = run_rfc("sim", SPEC, "--bag", tmp_path / "in.bag", "--out", out, cwd=ROOT,
+                     env={"XDG_CACHE_HOME": str(tmp_path / "cache")})  # fmt: skip
+    assert result.returncode == 0, result.stderr
+    assert [m.data for m in read_bag(out, types)] == [p.data for p in run.published]
+
+
+def test_the_vitis_run_disaggregates_the_structs_and_partitions_their_arrays(tmp_path):
+    out = tmp_path / "build"
+    result = run_rfc("build", SPEC, "-o", out, cwd=ROOT)
+    assert result.returncode == 0, result.stderr
+    hls = run_script(out / "hls/Fold/run.tcl", tmp_path / "hls.log")
+    assert hls.of("set_directive_disaggregate") == [[["Fold"], ["state"]], [["Fold"], ["folded"]]]
+    partitioned = [args[-1][0] for args in hls.of("set_directive_array_partition")]
+    assert partitioned == [f"state.{a}" for a in ("q", "q_d", "O_T_EE", "O_T_EE_d", "F_T_EE")]
+    assert [args[-2:] for args in hls.of("set_directive_interface")] == [
+        [["Fold"], ["return"]],
+        [["Fold"], ["state"]],
+        [["Fold"], ["folded"]],
+    ]
+    (source,) = hls.of("add_files")
+    assert Path(source[0][0]).read_text() == (SPEC.parent / "fold.cpp").read_text()
+    cells = check_vivado(run_script(out / "vivado/build.tcl", tmp_path / "vivado.log"))
+    core = next(ports for ports in cells.values() if "ap_start" in ports and "state_q_0" in ports)
+    assert {"state_F_T_EE_15", "folded_point_z", "folded_point_z_ap_vld"} <= set(core)
+
+
+def refused(tmp_path: Path, cpp: str, spec: Path = SPEC) -> str:
+    """The error of `rfc build` on a copy of `spec` whose C++ source is `cpp`."""
+    folder = tmp_path / "spec"
+    folder.mkdir()
+    text = spec.read_text().replace("../../../../examples", str(ROOT / "examples"))
+    (folder / spec.name).write_text(text)
+    source = "sums.cpp" if "sums" in spec.name else "fold.cpp"
+    (folder / source).write_text(cpp)
+    result = run_rfc("build", folder / spec.name, "-o", tmp_path / "b", cwd=ROOT)
+    assert result.returncode == 1
+    assert "Traceback" not in result.stderr
+    assert not (tmp_path / "b").exists()
+    return result.stderr
+
+
+def test_a_struct_of_another_port_is_refused_at_the_argument(tmp_path):
+    cpp = '#include "Fold_messages.h"\n\nvoid Fold(folded_t state, folded_t *folded) {}\n'
+    message = refused(tmp_path, cpp)
+    assert "fold.cpp:3:11:" in message
+    assert "argument 'state' of HLS top function Fold is a folded_t; expected state_t state" in (
+        message
+    )
+
+
+def test_an_input_struct_by_pointer_is_refused_at_the_argument(tmp_path):
+    cpp = '#include "Fold_messages.h"\n\nvoid Fold(state_t *state, folded_t *folded) {}\n'
+    message = refused(tmp_path, cpp)
+    assert "argument 'state' of HLS top function Fold is a pointer to state_t" in message
+
+
+def test_structs_mixed_with_scalars_are_refused_naming_the_arguments_needed(tmp_path):
+    cpp = '#include "Fold_messages.h"\n\nvoid Fold(state_t state, double *x) {}\n'
+    message = refused(tmp_path, cpp)
+    assert "fold.cpp:3:11:" in message
+    assert "has 2 arguments; taking structs, it needs state_t state, folded_t *folded" in message
+
+
+def test_hls_streams_are_refused_in_the_logic_at_the_argument(tmp_path):
+    sums = ROOT / "tests/runtime/systems/franka_hls/sums.yaml"
+    message = refused(tmp_path, (sums.parent / "sums.cpp").read_text(), sums)
+    assert "sums.cpp:4:26:" in message
+    assert "takes 'hls::stream<char> &state_header_frame_id': rfc does not wire" in message

@@ -3,16 +3,21 @@
 Two forms of top function reach the logic (docs/accelerators.md, "HLS accelerators"):
 
 * scalar arguments, one per selected field: the core's port is named like the argument;
-* one message struct per port (`rfc.lower.hls_types`), inputs by value and outputs by pointer.
-  The Vitis HLS run disaggregates each struct and completely partitions each of its arrays
+* one message struct per port (`rfc.lower.hls_types`), inputs by value and outputs by pointer,
+  each followed by one ``hls::stream`` per string or primitive sequence of the port. The Vitis
+  HLS run disaggregates each struct and completely partitions each of its arrays
   (`vitis_directives`), so that every scalar member becomes one port named
-  ``<argument>_<member>`` (``state_O_T_EE_15``, ``sums_point_x``) — the name the message
-  signature gives the same field, with the argument's name in front.
+  ``<argument>_<member>`` (``state_O_T_EE_15``, ``rgb_data_length``) — the name the message
+  signature gives the same field, with the argument's name in front; a stream is an ``ap_fifo``
+  named like its argument.
 
 Inputs are ``ap_none`` ports, outputs ``<name>`` with ``<name>_ap_vld``: the ap_ctrl wrapper
 (`rfc.lib.hls.adapter`) keeps the inputs steady from ``ap_start`` to ``ap_done`` and captures
-each output when its ``_ap_vld`` pulses. Strings and sequences (``hls::stream``) are C-simulated
-by ``rfc sim`` but not wired into the logic: `core_ports` refuses them.
+each output when its ``_ap_vld`` pulses. The wrapper starts the core at the first beat of an
+input stream, before the subscriber has the rest of the frame, so an input port's stream must
+come after every other field it selects (`core_ports` refuses other ports): at most one stream
+per input port, the last of its fields in message order. Sequences of messages or strings and
+bool fields are not wired.
 """
 
 from __future__ import annotations
@@ -21,15 +26,26 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 from rfc.errors import RfcError
+from rfc.ir.model import AcceleratorType
 from rfc.lib.converters.ports import Direction, Port, PortRole
 from rfc.lib.converters.steps import ROOT
-from rfc.lower.hls_signature import ArgumentKind, HlsArgument
+from rfc.lower.hls_signature import SCALAR_BITS, ArgumentKind, HlsArgument, read_top_function
+from rfc.lower.hls_types import message_struct
 
+#: Bits of a stream's length in the core (``uint32_t``).
+LENGTH_BITS = 32
+#: A sub-stream's pins besides its data: carried with the stream.
+_STREAM_ROLES = frozenset(
+    {PortRole.TDATA, PortRole.TKEEP, PortRole.TVALID, PortRole.TREADY, PortRole.TLAST}
+)
+#: What a struct member carries: a field, or the length of a string or sequence.
+_STRUCT_ROLES = frozenset({PortRole.FIELD, PortRole.LENGTH, PortRole.COUNT})
 #: How the scalar form orders its arguments.
 SCALAR_ORDER = "inputs' fields by value, then outputs' fields by pointer (docs/accelerators.md)"
 #: How the struct form orders its arguments.
 STRUCT_ORDER = (
-    "one struct per port in the spec's order, inputs by value and outputs by pointer, as "
+    "per port in the spec's order, its struct (inputs by value, outputs by pointer) and then "
+    "one hls::stream per string or sequence, as "
     "<accelerator>_messages.h declares the function (`rfc stub SPEC ACCELERATOR --lang hls`)"
 )
 
@@ -42,8 +58,9 @@ class CorePort:
         message_port: The accelerator's port the field belongs to.
         field: The field's pin in the message signature (``state_q_0``).
         core: The core's port (``state_q_0``; a scalar argument's name).
-        bits: Its width.
+        bits: The field's width.
         output: The core drives it (with ``<core>_ap_vld``).
+        core_bits: The core port's width: a stream's length is a ``uint32_t``.
     """
 
     message_port: str
@@ -51,6 +68,61 @@ class CorePort:
     core: str
     bits: int
     output: bool
+    core_bits: int
+
+    @property
+    def length(self) -> bool:
+        """Whether it is a stream's length (as wide in the core as a ``uint32_t``)."""
+        return self.core_bits != self.bits
+
+
+@dataclass(frozen=True)
+class CoreStream:
+    """One ``hls::stream`` argument of the core and the sub-stream it carries.
+
+    Attributes:
+        message_port: The accelerator's port the stream belongs to.
+        stream: Prefix of the sub-stream's pins in the message signature (``rgb_data``).
+        core: The argument's name: prefix of the core's ``ap_fifo`` ports.
+        element: Bits of one element.
+        beat: Bits of a beat of the sub-stream.
+        output: The core writes it.
+    """
+
+    message_port: str
+    stream: str
+    core: str
+    element: int
+    beat: int
+    output: bool
+
+
+@dataclass(frozen=True)
+class CoreInterface:
+    """The core's data ports: fields and lengths, then streams."""
+
+    ports: tuple[CorePort, ...]
+    streams: tuple[CoreStream, ...] = ()
+
+
+def accelerator_core(
+    accelerator: AcceleratorType, signatures: Mapping[str, Sequence[Port]]
+) -> tuple[tuple[HlsArgument, ...], CoreInterface]:
+    """Read an HLS accelerator's top function and match it with its ports' signatures.
+
+    It needs only the accelerator and its signatures, which check-hardware has too.
+
+    Raises:
+        RfcError: As `core_ports`, at the argument or else at the accelerator.
+    """
+    top = accelerator.top or accelerator.name
+    arguments = read_top_function(list(accelerator.sources), top)
+    try:
+        return arguments, core_ports(accelerator.name, top, arguments, signatures)
+    except RfcError as exc:
+        if exc.location is not None:
+            raise
+        raise RfcError(exc.message, location=accelerator.location, hint=exc.hint) from None
 
 
 def core_ports(
@@ -58,7 +130,7 @@ def core_ports(
     top: str,
     arguments: Sequence[HlsArgument],
     signatures: Mapping[str, Sequence[Port]],
-) -> tuple[CorePort, ...]:
+) -> CoreInterface:
     """Match the top function's arguments with the message fields, port by port.
 
     Args:
@@ -69,23 +141,13 @@ def core_ports(
             message signature.
 
     Raises:
-        RfcError: An argument that does not match its field or struct, a string or sequence
-            (not wired into the logic), or a bool field.
+        RfcError: An argument that does not match its field, struct or stream; a field the
+            logic does not wire; an input stream before a field the core reads.
     """
-    for argument in arguments:
-        if argument.kind is ArgumentKind.STREAM:
-            raise RfcError(
-                f"HLS top function {top} of accelerator '{accelerator}' takes "
-                f"'{argument.ctype} &{argument.name}': rfc does not wire hls::stream arguments "
-                "into the logic (`rfc sim` C-simulates them)",
-                location=argument.location,
-                hint="exclude the strings and sequences from the accelerator's ports, or write "
-                "it in MyHDL or VHDL",
-            )
+    if any(a.kind is not ArgumentKind.SCALAR for a in arguments):
+        return _struct_ports(accelerator, top, arguments, signatures)
     fields = [(port, pin) for port, pins in signatures.items() for pin in _fields(port, pins)]
-    if any(a.kind is ArgumentKind.STRUCT for a in arguments):
-        return _struct_ports(accelerator, top, arguments, signatures, fields)
-    return _scalar_ports(accelerator, top, arguments, fields)
+    return CoreInterface(_scalar_ports(accelerator, top, arguments, fields))
 
 
 def vitis_directives(
@@ -106,6 +168,8 @@ def vitis_directives(
     structs = [a for a in arguments if a.kind is ArgumentKind.STRUCT]
     for argument in arguments:
         mode = "ap_vld" if argument.output else "ap_none"
+        if argument.kind is ArgumentKind.STREAM:
+            mode = "ap_fifo"
         if argument.kind is ArgumentKind.STRUCT:
             lines.append(f"set_directive_disaggregate {top} {argument.name}")
         lines.append(f"set_directive_interface -mode {mode} {top} {argument.name}")
@@ -176,7 +240,8 @@ def _scalar_ports(
                 location=argument.location,
                 hint=SCALAR_ORDER,
             )
-        ports.append(CorePort(port, pin.name, argument.name, pin.bits, argument.output))
+        core = CorePort(port, pin.name, argument.name, pin.bits, argument.output, pin.bits)
+        ports.append(core)
     return tuple(ports)
 
 
@@ -185,38 +250,106 @@ def _struct_ports(
     top: str,
     arguments: Sequence[HlsArgument],
     signatures: Mapping[str, Sequence[Port]],
-    fields: list[tuple[str, Port]],
-) -> tuple[CorePort, ...]:
-    wanted = [
-        f"{name}_t *{name}" if _is_output(pins) else f"{name}_t {name}"
+) -> CoreInterface:
+    structs = {
+        name: message_struct(name, tuple(pins), _is_output(pins))
         for name, pins in signatures.items()
+    }
+    wanted = [a for struct in structs.values() for a in struct.arguments()]
+    kinds = [
+        k
+        for s in structs.values()
+        for k in (ArgumentKind.STRUCT, *[ArgumentKind.STREAM] * len(s.streams))
     ]
-    if len(arguments) != len(signatures) or any(
-        a.kind is not ArgumentKind.STRUCT for a in arguments
-    ):
+    if [a.kind for a in arguments] != kinds:
         raise RfcError(
-            f"HLS top function {top} of accelerator '{accelerator}' has "
-            f"{len(arguments)} arguments; taking structs, it needs " + ", ".join(wanted),
+            f"HLS top function {top} of accelerator '{accelerator}' has {len(arguments)} "
+            f"arguments; taking structs, it needs {len(wanted)}: " + ", ".join(wanted),
             location=arguments[0].location,
             hint=STRUCT_ORDER,
         )
-    ports = []
-    for argument, (name, pins), want in zip(arguments, signatures.items(), wanted, strict=True):
-        output = _is_output(pins)
-        if argument.ctype != f"{name}_t" or argument.output != output:
-            kind = "pointer to" if argument.output else ""
+    ports: list[CorePort] = []
+    streams: list[CoreStream] = []
+    remaining = list(arguments)
+    for name, struct in structs.items():
+        argument = remaining.pop(0)
+        want = struct.arguments()[0]
+        if argument.ctype != struct.type_name or argument.output != struct.output:
+            kind = "pointer to " if argument.output else ""
             raise RfcError(
-                f"argument '{argument.name}' of HLS top function {top} is a {kind} "
-                f"{argument.ctype}".replace("  ", " ")
-                + f"; expected {want}",
+                f"argument '{argument.name}' of HLS top function {top} is a {kind}"
+                f"{argument.ctype}; expected {want}",
                 location=argument.location,
                 hint=STRUCT_ORDER,
             )
-        for port, pin in fields:
-            if port == name:
-                core = "_".join(str(step) for step in (argument.name, *pin.member))
-                ports.append(CorePort(name, pin.name, core, pin.bits, output))
-    return tuple(ports)
+        pins = signatures[name]
+        ports += _struct_fields(name, argument, pins)
+        for stream, want in zip(struct.streams, struct.arguments()[1:], strict=True):
+            argument = remaining.pop(0)
+            if argument.ctype != f"hls::stream<{stream.element}>":
+                raise RfcError(
+                    f"argument '{argument.name}' of HLS top function {top} is a "
+                    f"{argument.ctype}; expected {want} for '{stream.path}'",
+                    location=argument.location,
+                    hint=STRUCT_ORDER,
+                )
+            tdata = next(p for p in pins if p.role is PortRole.TDATA and p.path == stream.path)
+            streams.append(
+                CoreStream(
+                    name,
+                    tdata.name.removesuffix("_tdata"),
+                    argument.name,
+                    SCALAR_BITS[stream.element],
+                    tdata.bits,
+                    struct.output,
+                )
+            )
+        if not struct.output:
+            _check_order(name, pins)
+    return CoreInterface(tuple(ports), tuple(streams))
+
+
+def _struct_fields(name: str, argument: HlsArgument, pins: Sequence[Port]) -> list[CorePort]:
+    """The struct's members as core ports: fields and stream lengths."""
+    ports = []
+    output = _is_output(pins)
+    for pin in pins:
+        if pin.group == ROOT and pin.role in (PortRole.VALID, PortRole.READY):
+            continue
+        if pin.role in _STREAM_ROLES and pin.group != ROOT:
+            continue
+        if pin.group != ROOT or pin.role not in _STRUCT_ROLES:
+            raise _refusal(name, pin, "a sequence of messages or of strings")
+        if pin.is_wire:
+            raise _refusal(name, pin, "a bool")
+        core = "_".join(str(step) for step in (argument.name, *pin.member))
+        bits = pin.bits if pin.role is PortRole.FIELD else LENGTH_BITS
+        ports.append(CorePort(name, pin.name, core, pin.bits, output, bits))
+    return ports
+
+
+def _check_order(name: str, pins: Sequence[Port]) -> None:
+    """Refuse an input port whose stream comes before a field the core reads.
+
+    Raises:
+        RfcError: Naming the stream and the first field after it.
+    """
+    stream = next((p for p in pins if p.role is PortRole.TDATA), None)
+    if stream is None:
+        return
+    after = pins[pins.index(stream) :]
+    late = next(
+        (p for p in after if p.group == ROOT and p.role in _STRUCT_ROLES),
+        None,
+    )
+    if late is not None:
+        raise RfcError(
+            f"port '{name}' selects '{late.path}' after the string or sequence "
+            f"'{stream.path}': an HLS core in the logic starts at the stream's first element, "
+            f"before the subscriber has '{late.path}'",
+            hint=f"exclude '{late.path}' or '{stream.path}' from port '{name}' (an input port "
+            "may have one string or sequence, after every other field it selects)",
+        )
 
 
 def _is_output(pins: Sequence[Port]) -> bool:

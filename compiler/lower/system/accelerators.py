@@ -5,8 +5,9 @@ between them, and where each of its message pins (`rfc.lower.system.interfaces`)
 blocks are elaborated with the convention's port signals and converted; VHDL entities are read
 with GHDL's parser and checked against the convention; an HLS top function becomes the Vitis
 HLS core (an IP cell) beside rfc's ap_ctrl wrapper (`rfc.lib.hls.adapter`): the core reads its
-inputs straight from the subscribers' fields, the wrapper drives its control and holds its
-outputs. Cell ports named ``clk``/``ap_clk`` go on the clock, ``rst``/``ap_rst`` on the reset.
+fixed inputs straight from the subscribers' fields, the wrapper drives its control, adapts its
+streams and lengths (`rfc.lower.hls_ports` names the core's ports) and holds its outputs.
+Cell ports named ``clk``/``ap_clk`` go on the clock, ``rst``/``ap_rst`` on the reset.
 """
 
 from __future__ import annotations
@@ -19,10 +20,9 @@ from pathlib import Path
 from rfc.errors import RfcError
 from rfc.ir.model import AcceleratorKind, AcceleratorType, Block
 from rfc.lib.converters.ports import Direction, Port, PortRole
-from rfc.lib.hls.adapter import AdapterShape
+from rfc.lib.hls.adapter import AdapterShape, StreamIn, StreamOut
 from rfc.lib.interface import typed_block
-from rfc.lower.hls_ports import core_ports, vitis_directives
-from rfc.lower.hls_signature import read_top_function
+from rfc.lower.hls_ports import CorePort, CoreStream, accelerator_core, vitis_directives
 from rfc.lower.netlist import EntityDecl, Mode, PortDecl
 from rfc.lower.system.components import (
     Component,
@@ -38,7 +38,6 @@ from rfc.passes.check_hardware import (
     RESET,
     block_function,
     flat_ports,
-    located,
     takes_interfaces,
     vhdl_entity,
 )
@@ -240,49 +239,31 @@ def _hls(
     directory: Path,
 ) -> AcceleratorHardware:
     top = accelerator.top or accelerator.name
-    arguments = read_top_function(list(accelerator.sources), top)
     signatures = {port: tuple(pin.signal for pin in pins) for port, pins in ports.items()}
-    mapped = located(
-        lambda: core_ports(accelerator.name, top, arguments, signatures), accelerator.location
-    )
-    by_field = {pin.signal.name: pin for pins in ports.values() for pin in pins}
-    core_decls = list(_HLS_CONTROL)
-    shape_outputs: dict[str, list[tuple[str, str, int]]] = {}
-    pins: dict[tuple[str, str], tuple[str, str]] = {}
-    wires = [("control", n, "core", n) for n in ("ap_start",)]
-    wires += [("core", n, "control", n) for n in ("ap_done", "ap_idle", "ap_ready")]
-    for core_port in mapped:
-        pin = by_field[core_port.field]
-        name, bits = core_port.core, core_port.bits
-        if core_port.output:
-            core_decls += [
-                PortDecl(name, Mode.OUT, bits),
-                PortDecl(f"{name}_ap_vld", Mode.OUT, 1, True),
-            ]
-            held = f"{_CORE_SIDE}{name}"  # the wrapper's name: a member's may be the field's
-            shape_outputs.setdefault(core_port.message_port, []).append((pin.port.name, held, bits))
-            wires += [
-                ("core", name, "control", held),
-                ("core", f"{name}_ap_vld", "control", f"{held}_ap_vld"),
-            ]
-            pins[(core_port.message_port, pin.role_name)] = ("control", pin.port.name)
-        else:
-            core_decls.append(PortDecl(name, Mode.IN, bits))
-            pins[(core_port.message_port, pin.role_name)] = ("core", name)
-    inputs = tuple(p.name for p in block.inputs)
+    arguments, interface = accelerator_core(accelerator, signatures)
+    wiring = _HlsWiring({pin.signal.name: pin for pins in ports.values() for pin in pins})
+    for core_port in interface.ports:
+        wiring.add_field(core_port)
+    for stream in interface.streams:
+        wiring.add_stream(stream)
     for port in block.ports:
-        pins[(port.name, f"{MESSAGE}_valid")] = ("control", f"{port.name}_valid")
-        pins[(port.name, f"{MESSAGE}_ready")] = ("control", f"{port.name}_ready")
+        wiring.pins[(port.name, f"{MESSAGE}_valid")] = ("control", f"{port.name}_valid")
+        wiring.pins[(port.name, f"{MESSAGE}_ready")] = ("control", f"{port.name}_ready")
+    sources = {s.message_port: s for s in interface.streams if not s.output}
     shape = AdapterShape(
-        inputs, tuple((p.name, tuple(shape_outputs.get(p.name, ()))) for p in block.outputs)
+        tuple(p.name for p in block.inputs),
+        tuple((p.name, tuple(wiring.outputs.get(p.name, ()))) for p in block.outputs),
+        tuple(_stream_in(sources.get(p.name)) for p in block.inputs),
+        tuple(_stream_out(s) for s in interface.streams if s.output),
+        tuple(wiring.lengths),
     )
     adapter = adapter_component(shape, directory, f"{entity_name(accelerator)}_ap_ctrl")
-    core = EntityDecl(top, tuple(core_decls), vlnv=f"xilinx.com:hls:{top}:1.0")
+    core = EntityDecl(top, tuple(wiring.core), vlnv=f"xilinx.com:hls:{top}:1.0")
     return AcceleratorHardware(
         (adapter,),
         (("core", core), ("control", adapter.entity)),
-        tuple(wires),
-        pins,
+        tuple(wiring.wires),
+        wiring.pins,
         HlsCore(
             accelerator.name,
             top,
@@ -290,6 +271,90 @@ def _hls(
             vitis_directives(top, arguments, signatures),
         ),
     )
+
+
+@dataclass
+class _HlsWiring:
+    """The core's ports and the wires between the core, the wrapper and the message pins."""
+
+    by_field: Mapping[str, Pin]
+    core: list[PortDecl] = field(default_factory=lambda: list(_HLS_CONTROL))
+    wires: list[tuple[str, str, str, str]] = field(
+        default_factory=lambda: [
+            ("control", "ap_start", "core", "ap_start"),
+            *(("core", n, "control", n) for n in ("ap_done", "ap_idle", "ap_ready")),
+        ]
+    )
+    pins: dict[tuple[str, str], tuple[str, str]] = field(default_factory=dict)
+    outputs: dict[str, list[tuple[str, str, int, int]]] = field(default_factory=dict)
+    lengths: list[tuple[str, str, int, int]] = field(default_factory=list)
+
+    def add_field(self, port: CorePort) -> None:
+        """A field or length: straight into the core, or through the wrapper."""
+        pin = self.by_field[port.field]
+        name, bits = port.core, port.core_bits
+        held = f"{_CORE_SIDE}{name}"  # the wrapper's name: a member's may be the field's
+        if port.output:
+            self.core += [
+                PortDecl(name, Mode.OUT, bits),
+                PortDecl(f"{name}_ap_vld", Mode.OUT, 1, True),
+            ]
+            self.outputs.setdefault(port.message_port, []).append(
+                (pin.port.name, held, port.bits, bits)
+            )
+            self.wires += [
+                ("core", name, "control", held),
+                ("core", f"{name}_ap_vld", "control", f"{held}_ap_vld"),
+            ]
+            self.pins[(port.message_port, pin.role_name)] = ("control", pin.port.name)
+        elif port.length:  # widened to the core's uint32_t by the wrapper
+            self.core.append(PortDecl(name, Mode.IN, bits))
+            self.lengths.append((pin.port.name, held, port.bits, bits))
+            self.wires.append(("control", held, "core", name))
+            self.pins[(port.message_port, pin.role_name)] = ("control", pin.port.name)
+        else:
+            self.core.append(PortDecl(name, Mode.IN, bits))
+            self.pins[(port.message_port, pin.role_name)] = ("core", name)
+
+    def add_stream(self, stream: CoreStream) -> None:
+        """A stream: its sub-stream pins on the wrapper, its ap_fifo between wrapper and core."""
+        for suffix in ("tdata", "tkeep", "tvalid", "tready", "tlast"):
+            pin = self.by_field.get(f"{stream.stream}_{suffix}")
+            if pin is not None:
+                self.pins[(stream.message_port, pin.role_name)] = ("control", pin.port.name)
+        arg, held = stream.core, f"{_CORE_SIDE}{stream.core}"
+        if stream.output:
+            self.core += [
+                PortDecl(f"{arg}_din", Mode.OUT, stream.element),
+                PortDecl(f"{arg}_full_n", Mode.IN, 1, True),
+                PortDecl(f"{arg}_write", Mode.OUT, 1, True),
+            ]
+            self.wires += [
+                ("core", f"{arg}_din", "control", f"{held}_din"),
+                ("control", f"{held}_full_n", "core", f"{arg}_full_n"),
+                ("core", f"{arg}_write", "control", f"{held}_write"),
+            ]
+        else:
+            self.core += [
+                PortDecl(f"{arg}_dout", Mode.IN, stream.element),
+                PortDecl(f"{arg}_empty_n", Mode.IN, 1, True),
+                PortDecl(f"{arg}_read", Mode.OUT, 1, True),
+            ]
+            self.wires += [
+                ("control", f"{held}_dout", "core", f"{arg}_dout"),
+                ("control", f"{held}_empty_n", "core", f"{arg}_empty_n"),
+                ("core", f"{arg}_read", "control", f"{held}_read"),
+            ]
+
+
+def _stream_in(stream: CoreStream | None) -> StreamIn | None:
+    if stream is None:
+        return None
+    return StreamIn(stream.stream, f"{_CORE_SIDE}{stream.core}", stream.element, stream.beat)
+
+
+def _stream_out(stream: CoreStream) -> StreamOut:
+    return StreamOut(stream.stream, f"{_CORE_SIDE}{stream.core}", stream.element, stream.beat)
 
 
 #: Builds the hardware of an accelerator type: (type, a block of it, its pins, output folder).

@@ -20,7 +20,10 @@ from rfc.lower.system.components import adapter_ports
 
 SHAPE = AdapterShape(
     inputs=("a", "b"),
-    outputs=(("sum", (("sum_v", "core_sum", 16),)), ("diff", (("diff_v", "core_diff", 16),))),
+    outputs=(
+        ("sum", (("sum_v", "core_sum", 16, 16),)),
+        ("diff", (("diff_v", "core_diff", 16, 16),)),
+    ),
 )
 MASK = 0xFFFF
 

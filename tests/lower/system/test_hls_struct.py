@@ -11,19 +11,15 @@ and the function's own C simulation (`rfc sim`) must agree.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from rfc.driver import compile_spec
-from rfc.lower.system.generate import generate_system
 from rfc.messages.codec import default_values
 from rfc.messages.layout import flatten
 from rfc.messages.rosbags_adapter import message_types, read_bag, write_bag
 from rfc.messages.values import values_to_message
-from rfc.runtime.core import QueueConfig
-from rfc.runtime.hardware import simulate_with_ghdl
+from tests.lower.system.hls_cores import replay_with_stand_in
 from tests.support.cli import run_rfc
 from tests.support.vendor_check import check_vivado, run_script
 
@@ -37,15 +33,6 @@ FOLDS = {
     "y": {"q_d": (7, 0)},
     "z": {"O_T_EE": (16, 0), "O_T_EE_d": (16, 16), "F_T_EE": (16, 32)},
 }
-
-
-@dataclass(frozen=True)
-class Top:
-    """The logic with the stand-in core, for `simulate_with_ghdl`."""
-
-    top: str
-    sources: list[Path]
-    bus_width: int
 
 
 def stand_in() -> str:
@@ -62,13 +49,12 @@ def stand_in() -> str:
     outputs = [
         f"folded_{member} : out std_logic_vector({bits - 1} downto 0) := (others => '0');\n"
         f"    folded_{member}_ap_vld : out std_logic := '0';"
-        for member, bits in [
-            ("header_stamp_sec", 32),
-            ("header_stamp_nanosec", 32),
-            ("point_x", 64),
-            ("point_y", 64),
-            ("point_z", 64),
-        ]
+        for member, bits in [("header_stamp_sec", 32), ("header_stamp_nanosec", 32)]
+    ]
+    outputs += [
+        f"folded_point_{axis} : out std_logic_vector(63 downto 0);\n"
+        f"    folded_point_{axis}_ap_vld : out std_logic;"
+        for axis in "xyz"
     ]
     words = "\n".join(
         f"  {name.lower()}({i}) <= unsigned(state_{name}_{i});"
@@ -96,9 +82,9 @@ entity Fold is
     ap_clk : in std_logic;
     ap_rst : in std_logic;
     ap_start : in std_logic;
-    ap_done : out std_logic := '0';
+    ap_done : out std_logic;
     ap_idle : out std_logic;
-    ap_ready : out std_logic := '0';
+    ap_ready : out std_logic;
     {chr(10).join("    " + line for line in inputs).strip()}
     {chr(10).join("    " + line for line in outputs).strip().rstrip(";")}
   );
@@ -108,23 +94,29 @@ architecture stand_in of Fold is
   type words is array (natural range <>) of unsigned(63 downto 0);
 {signals}
   signal busy : std_logic := '0';
+  signal last : std_logic;
   signal step : natural range 0 to 31 := 0;
   signal folds : words(0 to 2) := (others => (others => '0'));
 begin
 {words}
   ap_idle <= not busy;
+  -- as Vitis HLS's state machines do: done, ready and the last writes during the last state
+  last <= '1' when busy = '1' and step = 16 else '0';
+  ap_done <= last;
+  ap_ready <= last;
+  folded_point_x <= std_logic_vector(folds(0));
+  folded_point_y <= std_logic_vector(folds(1));
+  folded_point_z <= std_logic_vector(folds(2));
+  folded_point_x_ap_vld <= last;
+  folded_point_y_ap_vld <= last;
+  folded_point_z_ap_vld <= last;
 
   run : process (ap_clk)
     variable acc_x, acc_y, acc_z : unsigned(63 downto 0);
   begin
     if rising_edge(ap_clk) then
-      ap_done <= '0';
-      ap_ready <= '0';
       folded_header_stamp_sec_ap_vld <= '0';
       folded_header_stamp_nanosec_ap_vld <= '0';
-      folded_point_x_ap_vld <= '0';
-      folded_point_y_ap_vld <= '0';
-      folded_point_z_ap_vld <= '0';
       if ap_rst = '1' then
         busy <= '0';
       elsif busy = '0' then
@@ -147,14 +139,6 @@ begin
           folded_header_stamp_nanosec <= state_header_stamp_nanosec;
           folded_header_stamp_nanosec_ap_vld <= '1';
         elsif step = 16 then
-          folded_point_x <= std_logic_vector(folds(0));
-          folded_point_y <= std_logic_vector(folds(1));
-          folded_point_z <= std_logic_vector(folds(2));
-          folded_point_x_ap_vld <= '1';
-          folded_point_y_ap_vld <= '1';
-          folded_point_z_ap_vld <= '1';
-          ap_done <= '1';
-          ap_ready <= '1';
           busy <= '0';
         end if;
       end if;
@@ -207,30 +191,22 @@ def expected_point(state: dict[str, np.ndarray]) -> bytes:
 
 def test_an_hls_core_taking_franka_state_as_a_struct_runs_in_the_logic(tmp_path):
     states = franka_bag(tmp_path / "in.bag", 3)
-    design = compile_spec(str(SPEC))
-    system = generate_system(design, tmp_path / "hdl")
-    core = tmp_path / "hdl" / "fold_stand_in.vhd"
-    core.write_text(stand_in())
-    package, *parts, top = system.files
-    logic = Top(system.top, [package, core, *parts, top], system.bus_width)
-    (tmp_path / "sim").mkdir()
-    run = simulate_with_ghdl(
-        design, tmp_path / "in.bag", {"/franka_state": "/franka_state"}, logic, tmp_path / "sim",
-        queues=QueueConfig(),
-    )  # fmt: skip
+    published = replay_with_stand_in(
+        SPEC, stand_in(), tmp_path / "in.bag", "/franka_state", tmp_path
+    )
     types = message_types("ros1")
-    assert [p.topic for p in run.published] == ["/folded"] * len(states)
-    for index, (state, published) in enumerate(zip(states, run.published, strict=True)):
-        message = types.deserialize(published.data, POINT)
+    assert [p.topic for p in published] == ["/folded"] * len(states)
+    for index, (state, sent) in enumerate(zip(states, published, strict=True)):
+        message = types.deserialize(sent.data, POINT)
         assert (message.header.stamp.sec, message.header.stamp.nanosec) == (100 + index, 7 * index)
         assert message.header.frame_id == ""
-        assert published.data[-24:] == expected_point(state)
+        assert sent.data[-24:] == expected_point(state)
     # the function itself, C-simulated by `rfc sim`, gives the same messages
     out = tmp_path / "c.bag"
     result = run_rfc("sim", SPEC, "--bag", tmp_path / "in.bag", "--out", out, cwd=ROOT,
                      env={"XDG_CACHE_HOME": str(tmp_path / "cache")})  # fmt: skip
     assert result.returncode == 0, result.stderr
-    assert [m.data for m in read_bag(out, types)] == [p.data for p in run.published]
+    assert [m.data for m in read_bag(out, types)] == [p.data for p in published]
 
 
 def test_the_vitis_run_disaggregates_the_structs_and_partitions_their_arrays(tmp_path):
@@ -287,11 +263,14 @@ def test_structs_mixed_with_scalars_are_refused_naming_the_arguments_needed(tmp_
     cpp = '#include "Fold_messages.h"\n\nvoid Fold(state_t state, double *x) {}\n'
     message = refused(tmp_path, cpp)
     assert "fold.cpp:3:11:" in message
-    assert "has 2 arguments; taking structs, it needs state_t state, folded_t *folded" in message
+    assert "has 2 arguments; taking structs, it needs 2: state_t state, folded_t *folded" in (
+        message
+    )
 
 
-def test_hls_streams_are_refused_in_the_logic_at_the_argument(tmp_path):
+def test_an_input_stream_before_a_field_the_core_reads_is_refused(tmp_path):
+    # header.frame_id comes before q: the core would start before the subscriber has q
     sums = ROOT / "tests/runtime/systems/franka_hls/sums.yaml"
     message = refused(tmp_path, (sums.parent / "sums.cpp").read_text(), sums)
-    assert "sums.cpp:4:26:" in message
-    assert "takes 'hls::stream<char> &state_header_frame_id': rfc does not wire" in message
+    assert "sums.yaml:" in message
+    assert "port 'state' selects 'q[0]' after the string or sequence 'header.frame_id'" in message

@@ -343,11 +343,12 @@ def _check_order(name: str, pins: Sequence[Port]) -> None:
         None,
     )
     if late is not None:
+        field = (late.path or late.name).split("[")[0]  # an array's element: the array
         raise RfcError(
             f"port '{name}' selects '{late.path}' after the string or sequence "
             f"'{stream.path}': an HLS core in the logic starts at the stream's first element, "
             f"before the subscriber has '{late.path}'",
-            hint=f"exclude '{late.path}' or '{stream.path}' from port '{name}' (an input port "
+            hint=f"exclude '{field}' or '{stream.path}' from port '{name}' (an input port "
             "may have one string or sequence, after every other field it selects)",
         )
 

@@ -27,32 +27,14 @@ from rfc.lib.hls.streams import pack_elements, unpack_beats
 
 
 @dataclass(frozen=True)
-class StreamIn:
-    """A subscriber's sub-stream handed to the core element by element.
+class StreamPort:
+    """A sub-stream between a converter and the core's ``ap_fifo`` ports.
 
     Attributes:
-        stream: Prefix of its converter-side pins (``<stream>_tdata``, ``_tkeep``, ``_tvalid``,
-            ``_tready``, ``_tlast``).
-        core: Prefix of the wrapper's pins toward the core (``<core>_dout``, ``_empty_n``,
-            ``_read``).
-        element: Bits of one element.
-        beat: Bits of a beat (``tdata``).
-    """
-
-    stream: str
-    core: str
-    element: int
-    beat: int
-
-
-@dataclass(frozen=True)
-class StreamOut:
-    """The core's elements gathered into a publisher's sub-stream.
-
-    Attributes:
-        stream: Prefix of its converter-side pins (``<stream>_tdata``, ``_tvalid``, ``_tready``).
-        core: Prefix of the wrapper's pins toward the core (``<core>_din``, ``_full_n``,
-            ``_write``).
+        stream: Prefix of its converter-side pins: ``<stream>_tdata``, ``_tvalid``, ``_tready``
+            (and from a subscriber ``_tkeep``, ``_tlast``).
+        core: Prefix of the wrapper's pins toward the core: ``<core>_dout``, ``_empty_n``,
+            ``_read`` for an input; ``<core>_din``, ``_full_n``, ``_write`` for an output.
         element: Bits of one element.
         beat: Bits of a beat (``tdata``).
     """
@@ -80,8 +62,8 @@ class AdapterShape:
 
     inputs: tuple[str, ...]
     outputs: tuple[tuple[str, tuple[tuple[str, str, int, int], ...]], ...]
-    sources: tuple[StreamIn | None, ...] = ()
-    sinks: tuple[StreamOut, ...] = ()
+    sources: tuple[StreamPort | None, ...] = ()
+    sinks: tuple[StreamPort, ...] = ()
     lengths: tuple[tuple[str, str, int, int], ...] = ()
 
 

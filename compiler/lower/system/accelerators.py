@@ -20,7 +20,7 @@ from pathlib import Path
 from rfc.errors import RfcError
 from rfc.ir.model import AcceleratorKind, AcceleratorType, Block
 from rfc.lib.converters.ports import Direction, Port, PortRole
-from rfc.lib.hls.adapter import AdapterShape, StreamIn, StreamOut
+from rfc.lib.hls.adapter import AdapterShape, StreamPort
 from rfc.lib.interface import typed_block
 from rfc.lower.hls_ports import CorePort, CoreStream, accelerator_core, vitis_directives
 from rfc.lower.netlist import EntityDecl, Mode, PortDecl
@@ -52,6 +52,12 @@ _HLS_CONTROL = (
     PortDecl("ap_idle", Mode.OUT, 1, True),
     PortDecl("ap_ready", Mode.OUT, 1, True),
 )
+#: A core's ap_fifo ports, for an output stream (True) and an input one: (suffix, the core's
+#: mode, whether it carries an element rather than one bit).
+_FIFO_PORTS = {
+    True: (("din", Mode.OUT, True), ("full_n", Mode.IN, False), ("write", Mode.OUT, False)),
+    False: (("dout", Mode.IN, True), ("empty_n", Mode.IN, False), ("read", Mode.OUT, False)),
+}
 #: Prefix of the ap_ctrl wrapper's inputs from the core's outputs.
 _CORE_SIDE = "core_"
 
@@ -323,38 +329,22 @@ class _HlsWiring:
             if pin is not None:
                 self.pins[(stream.message_port, pin.role_name)] = ("control", pin.port.name)
         arg, held = stream.core, f"{_CORE_SIDE}{stream.core}"
-        if stream.output:
-            self.core += [
-                PortDecl(f"{arg}_din", Mode.OUT, stream.element),
-                PortDecl(f"{arg}_full_n", Mode.IN, 1, True),
-                PortDecl(f"{arg}_write", Mode.OUT, 1, True),
-            ]
-            self.wires += [
-                ("core", f"{arg}_din", "control", f"{held}_din"),
-                ("control", f"{held}_full_n", "core", f"{arg}_full_n"),
-                ("core", f"{arg}_write", "control", f"{held}_write"),
-            ]
-        else:
-            self.core += [
-                PortDecl(f"{arg}_dout", Mode.IN, stream.element),
-                PortDecl(f"{arg}_empty_n", Mode.IN, 1, True),
-                PortDecl(f"{arg}_read", Mode.OUT, 1, True),
-            ]
-            self.wires += [
-                ("control", f"{held}_dout", "core", f"{arg}_dout"),
-                ("control", f"{held}_empty_n", "core", f"{arg}_empty_n"),
-                ("core", f"{arg}_read", "control", f"{held}_read"),
-            ]
+        for suffix, mode, data in _FIFO_PORTS[stream.output]:
+            self.core.append(
+                PortDecl(f"{arg}_{suffix}", mode, stream.element if data else 1, not data)
+            )
+            core, wrapper = ("core", f"{arg}_{suffix}"), ("control", f"{held}_{suffix}")
+            self.wires.append((*core, *wrapper) if mode is Mode.OUT else (*wrapper, *core))
 
 
-def _stream_in(stream: CoreStream | None) -> StreamIn | None:
+def _stream_in(stream: CoreStream | None) -> StreamPort | None:
     if stream is None:
         return None
-    return StreamIn(stream.stream, f"{_CORE_SIDE}{stream.core}", stream.element, stream.beat)
+    return StreamPort(stream.stream, f"{_CORE_SIDE}{stream.core}", stream.element, stream.beat)
 
 
-def _stream_out(stream: CoreStream) -> StreamOut:
-    return StreamOut(stream.stream, f"{_CORE_SIDE}{stream.core}", stream.element, stream.beat)
+def _stream_out(stream: CoreStream) -> StreamPort:
+    return StreamPort(stream.stream, f"{_CORE_SIDE}{stream.core}", stream.element, stream.beat)
 
 
 #: Builds the hardware of an accelerator type: (type, a block of it, its pins, output folder).

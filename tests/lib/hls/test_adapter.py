@@ -15,7 +15,7 @@ import pytest
 from myhdl import StopSimulation, block, delay, instance
 
 from rfc.lib.converters.toplevel import elaboration, port_signals, top_block
-from rfc.lib.hls.adapter import AdapterShape, StreamIn, StreamOut, hls_adapter
+from rfc.lib.hls.adapter import AdapterShape, StreamPort, hls_adapter
 from rfc.lower.system.components import adapter_ports
 
 SHAPE = AdapterShape(
@@ -121,8 +121,8 @@ def test_one_call_per_message_and_every_result_delivered_once(seed):
 STREAMS = AdapterShape(
     inputs=("a",),
     outputs=(("sum", (("sum_length", "core_sum_length", 6, 32),)),),
-    sources=(StreamIn("a_s", "core_a_s", 8, 32),),
-    sinks=(StreamOut("sum_s", "core_sum_s", 8, 32),),
+    sources=(StreamPort("a_s", "core_a_s", 8, 32),),
+    sinks=(StreamPort("sum_s", "core_sum_s", 8, 32),),
 )
 
 

@@ -12,8 +12,13 @@ from pathlib import Path
 
 from rfc.driver import compile_spec
 from rfc.lower.system.generate import generate_system
+from rfc.messages.rosbags_adapter import MessageTypes, read_bag
 from rfc.runtime.core import Published, QueueConfig
 from rfc.runtime.hardware import simulate_with_ghdl
+from tests.support.cli import run_rfc
+from tests.support.vendor_check import Record, run_script
+
+ROOT = Path(__file__).resolve().parents[3]
 
 
 @dataclass(frozen=True)
@@ -40,3 +45,20 @@ def replay_with_stand_in(
         design, bag, {topic: topic}, logic, folder / "sim", queues=QueueConfig()
     )
     return run.published
+
+
+def c_simulated(spec: Path, bag: Path, types: MessageTypes, folder: Path) -> list[bytes]:
+    """What `rfc sim` publishes for `bag`, the HLS function C-simulated with g++."""
+    out = folder / f"c{bag.suffix}"
+    result = run_rfc("sim", spec, "--bag", bag, "--out", out, cwd=ROOT,
+                     env={"XDG_CACHE_HOME": str(folder / "cache")})  # fmt: skip
+    assert result.returncode == 0, result.stderr
+    return [m.data for m in read_bag(out, types)]
+
+
+def built_with_vitis_run(spec: Path, accelerator: str, folder: Path) -> tuple[Path, Record]:
+    """`rfc build` of `spec` into ``folder/build``, and what its Vitis HLS run would do."""
+    out = folder / "build"
+    result = run_rfc("build", spec, "-o", out, cwd=ROOT)
+    assert result.returncode == 0, result.stderr
+    return out, run_script(out / "hls" / accelerator / "run.tcl", folder / "hls.log")

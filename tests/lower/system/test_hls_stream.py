@@ -15,9 +15,12 @@ from pathlib import Path
 
 import numpy as np
 
-from rfc.messages.rosbags_adapter import message_types, read_bag, write_bag
-from tests.lower.system.hls_cores import replay_with_stand_in
-from tests.support.cli import run_rfc
+from rfc.messages.rosbags_adapter import message_types, write_bag
+from tests.lower.system.hls_cores import (
+    built_with_vitis_run,
+    c_simulated,
+    replay_with_stand_in,
+)
 from tests.support.vendor_check import check_vivado, run_script
 
 ROOT = Path(__file__).resolve().parents[3]
@@ -151,18 +154,11 @@ def test_an_hls_core_taking_an_image_stream_runs_in_the_logic(tmp_path):
         assert (out.header.frame_id, out.encoding) == ("", "")  # not selected: defaults
         assert out.data.tobytes() == (255 - image.data).astype(np.uint8).tobytes()
     # the function itself, C-simulated by `rfc sim`, gives the same messages
-    c_out = tmp_path / "c.mcap"
-    result = run_rfc("sim", SPEC, "--bag", tmp_path / "in.mcap", "--out", c_out, cwd=ROOT,
-                     env={"XDG_CACHE_HOME": str(tmp_path / "cache")})  # fmt: skip
-    assert result.returncode == 0, result.stderr
-    assert [m.data for m in read_bag(c_out, types)] == [p.data for p in published]
+    assert c_simulated(SPEC, tmp_path / "in.mcap", types, tmp_path) == [p.data for p in published]
 
 
 def test_the_vitis_run_gives_the_streams_ap_fifo(tmp_path):
-    out = tmp_path / "build"
-    result = run_rfc("build", SPEC, "-o", out, cwd=ROOT)
-    assert result.returncode == 0, result.stderr
-    hls = run_script(out / "hls/Invert/run.tcl", tmp_path / "hls.log")
+    out, hls = built_with_vitis_run(SPEC, "Invert", tmp_path)
     modes = {args[-1][0]: args[1][0] for args in hls.of("set_directive_interface")}
     assert modes == {
         "return": "ap_ctrl_hs",

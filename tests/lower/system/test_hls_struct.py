@@ -17,9 +17,13 @@ import numpy as np
 
 from rfc.messages.codec import default_values
 from rfc.messages.layout import flatten
-from rfc.messages.rosbags_adapter import message_types, read_bag, write_bag
+from rfc.messages.rosbags_adapter import message_types, write_bag
 from rfc.messages.values import values_to_message
-from tests.lower.system.hls_cores import replay_with_stand_in
+from tests.lower.system.hls_cores import (
+    built_with_vitis_run,
+    c_simulated,
+    replay_with_stand_in,
+)
 from tests.support.cli import run_rfc
 from tests.support.vendor_check import check_vivado, run_script
 
@@ -202,18 +206,11 @@ def test_an_hls_core_taking_franka_state_as_a_struct_runs_in_the_logic(tmp_path)
         assert message.header.frame_id == ""
         assert sent.data[-24:] == expected_point(state)
     # the function itself, C-simulated by `rfc sim`, gives the same messages
-    out = tmp_path / "c.bag"
-    result = run_rfc("sim", SPEC, "--bag", tmp_path / "in.bag", "--out", out, cwd=ROOT,
-                     env={"XDG_CACHE_HOME": str(tmp_path / "cache")})  # fmt: skip
-    assert result.returncode == 0, result.stderr
-    assert [m.data for m in read_bag(out, types)] == [p.data for p in published]
+    assert c_simulated(SPEC, tmp_path / "in.bag", types, tmp_path) == [p.data for p in published]
 
 
 def test_the_vitis_run_disaggregates_the_structs_and_partitions_their_arrays(tmp_path):
-    out = tmp_path / "build"
-    result = run_rfc("build", SPEC, "-o", out, cwd=ROOT)
-    assert result.returncode == 0, result.stderr
-    hls = run_script(out / "hls/Fold/run.tcl", tmp_path / "hls.log")
+    out, hls = built_with_vitis_run(SPEC, "Fold", tmp_path)
     assert hls.of("set_directive_disaggregate") == [[["Fold"], ["state"]], [["Fold"], ["folded"]]]
     partitioned = [args[-1][0] for args in hls.of("set_directive_array_partition")]
     assert partitioned == [f"state.{a}" for a in ("q", "q_d", "O_T_EE", "O_T_EE_d", "F_T_EE")]

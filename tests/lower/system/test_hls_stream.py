@@ -5,15 +5,18 @@ struct one cycle after ``ap_start``, moves the bytes through its ``ap_fifo`` por
 input is not empty and the output not full, and sets ``data_length`` (with its ``_ap_vld``)
 only after the last byte — as Vitis HLS may schedule it. The core starts at the image's first
 byte, before the subscriber has the rest of the frame; an empty image starts it with the
-message. The published images must be the inputs' with every byte inverted (NumPy, on
-rosbags' messages), and the function's own C simulation (`rfc sim`) must agree byte for byte.
+message. On buses of 8, 32 and 64 bits, the published images must be the inputs' with every
+byte inverted (NumPy, on rosbags' messages), and the function's own C simulation (`rfc sim`)
+must agree byte for byte.
 """
 
 from __future__ import annotations
 
+import shutil
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 from rfc.messages.rosbags_adapter import message_types, write_bag
 from tests.lower.system.hls_cores import (
@@ -139,9 +142,13 @@ def image_bag(path: Path) -> list[object]:
     return images
 
 
-def test_an_hls_core_taking_an_image_stream_runs_in_the_logic(tmp_path):
+@pytest.mark.parametrize("width", [8, 32, 64])
+def test_an_hls_core_taking_an_image_stream_runs_in_the_logic(tmp_path, width):
     images = image_bag(tmp_path / "in.mcap")
-    published = replay_with_stand_in(SPEC, STAND_IN, tmp_path / "in.mcap", "/image", tmp_path)
+    spec = tmp_path / "spec" / SPEC.name
+    shutil.copytree(SPEC.parent, spec.parent)
+    spec.write_text(SPEC.read_text().replace("busWidth: 64", f"busWidth: {width}"))
+    published = replay_with_stand_in(spec, STAND_IN, tmp_path / "in.mcap", "/image", tmp_path)
     types = message_types("ros2")
     assert [p.topic for p in published] == ["/inverted"] * len(images)
     for image, sent in zip(images, published, strict=True):
@@ -154,7 +161,7 @@ def test_an_hls_core_taking_an_image_stream_runs_in_the_logic(tmp_path):
         assert (out.header.frame_id, out.encoding) == ("", "")  # not selected: defaults
         assert out.data.tobytes() == (255 - image.data).astype(np.uint8).tobytes()
     # the function itself, C-simulated by `rfc sim`, gives the same messages
-    assert c_simulated(SPEC, tmp_path / "in.mcap", types, tmp_path) == [p.data for p in published]
+    assert c_simulated(spec, tmp_path / "in.mcap", types, tmp_path) == [p.data for p in published]
 
 
 def test_the_vitis_run_gives_the_streams_ap_fifo(tmp_path):

@@ -14,10 +14,10 @@ Two forms of top function reach the logic (docs/accelerators.md, "HLS accelerato
 Inputs are ``ap_none`` ports, outputs ``<name>`` with ``<name>_ap_vld``: the ap_ctrl wrapper
 (`rfc.lib.hls.adapter`) keeps the inputs steady from ``ap_start`` to ``ap_done`` and captures
 each output when its ``_ap_vld`` pulses. The wrapper starts the core at the first beat of an
-input stream, before the subscriber has the rest of the frame, so an input port's stream must
-come after every other field it selects (`core_ports` refuses other ports): at most one stream
-per input port, the last of its fields in message order. Sequences of messages or strings and
-bool fields are not wired.
+input port's last stream, before the subscriber has the rest of the frame, and holds the port's
+earlier streams whole in FIFOs (`held_streams`) so that the subscriber can go on to it; so the
+fields an input port selects must come before its last stream (`core_ports` refuses other
+ports). Sequences of messages or strings and bool fields are not wired.
 """
 
 from __future__ import annotations
@@ -26,11 +26,14 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 from rfc.errors import RfcError
-from rfc.ir.model import AcceleratorType
-from rfc.lib.converters.ports import Direction, Port, PortRole
-from rfc.lib.converters.steps import ROOT
+from rfc.ir.model import AcceleratorType, Block
+from rfc.lib.converters.buffers import Buffer
+from rfc.lib.converters.plan import plan
+from rfc.lib.converters.ports import ROOT_CHANNEL, Direction, Port, PortRole, stream_bytes
+from rfc.lib.converters.steps import ROOT, Payload, Plan
 from rfc.lower.hls_signature import SCALAR_BITS, ArgumentKind, HlsArgument, read_top_function
 from rfc.lower.hls_types import message_struct
+from rfc.messages.limits import Limits
 
 #: Bits of a stream's length in the core (``uint32_t``).
 LENGTH_BITS = 32
@@ -82,6 +85,7 @@ class CoreStream:
 
     Attributes:
         message_port: The accelerator's port the stream belongs to.
+        path: The string's or sequence's field path (``header.frame_id``).
         stream: Prefix of the sub-stream's pins in the message signature (``rgb_data``).
         core: The argument's name: prefix of the core's ``ap_fifo`` ports.
         element: Bits of one element.
@@ -90,6 +94,7 @@ class CoreStream:
     """
 
     message_port: str
+    path: str
     stream: str
     core: str
     element: int
@@ -297,6 +302,7 @@ def _struct_ports(
             streams.append(
                 CoreStream(
                     name,
+                    stream.path,
                     tdata.name.removesuffix("_tdata"),
                     argument.name,
                     SCALAR_BITS[stream.element],
@@ -329,15 +335,15 @@ def _struct_fields(name: str, argument: HlsArgument, pins: Sequence[Port]) -> li
 
 
 def _check_order(name: str, pins: Sequence[Port]) -> None:
-    """Refuse an input port whose stream comes before a field the core reads.
+    """Refuse an input port that selects a field after its last stream.
 
     Raises:
-        RfcError: Naming the stream and the first field after it.
+        RfcError: Naming the last stream and the first field after it.
     """
-    stream = next((p for p in pins if p.role is PortRole.TDATA), None)
-    if stream is None:
+    streams = [p for p in pins if p.role is PortRole.TDATA]
+    if not streams:
         return
-    after = pins[pins.index(stream) :]
+    after = pins[pins.index(streams[-1]) :]
     late = next(
         (p for p in after if p.group == ROOT and p.role in _STRUCT_ROLES),
         None,
@@ -345,12 +351,46 @@ def _check_order(name: str, pins: Sequence[Port]) -> None:
     if late is not None:
         field = (late.path or late.name).split("[")[0]  # an array's element: the array
         raise RfcError(
-            f"port '{name}' selects '{late.path}' after the string or sequence "
-            f"'{stream.path}': an HLS core in the logic starts at the stream's first element, "
-            f"before the subscriber has '{late.path}'",
-            hint=f"exclude '{field}' or '{stream.path}' from port '{name}' (an input port "
-            "may have one string or sequence, after every other field it selects)",
+            f"port '{name}' selects '{late.path}' after its last string or sequence "
+            f"'{streams[-1].path}': an HLS core in the logic starts at that stream's first "
+            f"element, before the subscriber has '{late.path}'",
+            hint=f"exclude '{field}' or '{streams[-1].path}' from port '{name}' (the fields of "
+            "an input port must come before its last string or sequence)",
         )
+
+
+def input_holds(block: Block, width: int, limits: Limits) -> tuple[tuple[str, Buffer], ...]:
+    """The FIFOs of an HLS accelerator block's wrapper, each with its input port's name."""
+    return tuple(
+        (port.name, buffer)
+        for port in block.inputs
+        if port.layout is not None
+        for buffer in held_streams(plan(port.layout, width, limits))
+    )
+
+
+def held_streams(chosen: Plan) -> tuple[Buffer, ...]:
+    """The FIFOs of an HLS core's input port: one per string or sequence but its last.
+
+    The subscriber sends those streams before the one whose first beat starts the core, so the
+    wrapper holds each whole, up to its maximum (strings ``maxima.string``), in beats with
+    their ``tkeep``.
+
+    Args:
+        chosen: The plan of the subscriber feeding the port.
+    """
+    payloads = [
+        s
+        for s in chosen.steps
+        if isinstance(s, Payload) and s.stream is not None and s.channel == ROOT_CHANNEL
+    ]
+    held = []
+    for payload in payloads[:-1]:
+        assert payload.stream is not None
+        beat = stream_bytes(payload, chosen.width)
+        words = -(-payload.maximum * payload.element_size // beat)
+        held.append(Buffer(payload.stream, payload.path, words, beat * 8 + beat))
+    return tuple(held)
 
 
 def _is_output(pins: Sequence[Port]) -> bool:

@@ -88,6 +88,8 @@ class CheckHardware:
             if accelerator.name not in checked:
                 checked.add(accelerator.name)
                 check_sources(accelerator, signatures)
+            if accelerator.kind is AcceleratorKind.HLS:
+                buffers[block.name] = hls_fifos(block, width, limits)
         check_fan_out(design)
         check_buffer_memory(design, buffers)
         return replace(design, stage=Stage.CHECKED)
@@ -332,6 +334,13 @@ def check_buffer_memory(design: Design, buffers: Mapping[str, tuple[Buffer, ...]
         location=location,
         hint=f"give the project smaller maxima, e.g. maxima: {example} (docs/spec.md)",
     )
+
+
+def hls_fifos(block: Block, width: int, limits: Limits) -> tuple[Buffer, ...]:
+    """The FIFOs an HLS block's wrapper holds its input ports' earlier streams in."""
+    from rfc.lower.hls_ports import input_holds
+
+    return tuple(buffer for _, buffer in input_holds(block, width, limits))
 
 
 #: Per accelerator kind, how its source is checked against its message signatures (HLS

@@ -4,9 +4,11 @@ A core made with ``ap_ctrl_hs`` on its function, ``ap_none`` on its scalar input
 on its pointer outputs and ``ap_fifo`` on its streams (`rfc.lower.hls_ports`) reads its fixed
 inputs straight from the subscribers' registered fields. The wrapper starts it when every input
 port is ready to be read (``ap_start`` held until ``ap_ready``): its message is valid, or the
-first beat of its stream has come — the subscriber sends a stream while the frame arrives and
-raises the message's valid only at its end, and a port's stream comes after every field the
-core reads (`rfc.lower.hls_ports` refuses other ports). Stream beats are handed to the core
+first beat of its last stream has come — the subscriber sends a stream while the frame arrives
+and raises the message's valid only at its end, and every field the core reads comes before a
+port's last stream (`rfc.lower.hls_ports` refuses other ports). A port's earlier streams are
+held whole in FIFOs (`rfc.lib.converters.fifo`), so the subscriber can go on to the last one
+before the core runs. Stream beats are handed to the core
 element by element and its elements gathered into beats (`rfc.lib.hls.streams`); input lengths
 are widened to the core's ``uint32_t``. The wrapper captures each output when its ``_ap_vld``
 pulses and, on ``ap_done``, sends the output streams' last partial beats, offers each output
@@ -22,6 +24,8 @@ from typing import Any
 
 from myhdl import ConcatSignal, Signal, always_comb, always_seq, block, enum, intbv
 
+from rfc.lib.converters.buffers import split
+from rfc.lib.converters.fifo import fifo
 from rfc.lib.converters.wiring import follow, index_bit
 from rfc.lib.hls.streams import pack_elements, unpack_beats
 
@@ -37,12 +41,14 @@ class StreamPort:
             ``_read`` for an input; ``<core>_din``, ``_full_n``, ``_write`` for an output.
         element: Bits of one element.
         beat: Bits of a beat (``tdata``).
+        depth: Beats of the FIFO that holds it whole before the core starts (0: none).
     """
 
     stream: str
     core: str
     element: int
     beat: int
+    depth: int = 0
 
 
 @dataclass(frozen=True)
@@ -54,10 +60,11 @@ class AdapterShape:
         outputs: Per output port, its name and its fields as ``(field port, core port, bits,
             core bits)``: the wrapper drives ``field port`` from the core's ``core port`` (as
             wide as the core makes it) and its ``_ap_vld``.
-        sources: Per input port (in the order of `inputs`), its stream, if any: its first beat
-            starts the core as the message's valid does.
+        sources: Per input port (in the order of `inputs`), its last stream, if any: its first
+            beat starts the core as the message's valid does.
         sinks: The output ports' streams.
         lengths: Input stream lengths as ``(field port, core port, bits, core bits)``, widened.
+        held: The input ports' other streams, each through a FIFO of its `StreamPort.depth`.
     """
 
     inputs: tuple[str, ...]
@@ -65,6 +72,7 @@ class AdapterShape:
     sources: tuple[StreamPort | None, ...] = ()
     sinks: tuple[StreamPort, ...] = ()
     lengths: tuple[tuple[str, str, int, int], ...] = ()
+    held: tuple[StreamPort, ...] = ()
 
 
 @block
@@ -121,6 +129,20 @@ def hls_adapter(shape: AdapterShape, **ports: Any) -> Any:
                 ports[f"{c}_empty_n"], ports[f"{c}_read"],
             )
         )  # fmt: skip
+    for stream in shape.held:
+        s, c, keep = stream.stream, stream.core, stream.beat // 8
+        word = ConcatSignal(ports[f"{s}_tkeep"], ports[f"{s}_tdata"])
+        shown = Signal(intbv(0)[stream.beat + keep :])
+        tdata, tkeep = Signal(intbv(0)[stream.beat :]), Signal(intbv(0)[keep:])
+        tvalid, tready = Signal(bool(0)), Signal(bool(0))
+        parts += [
+            fifo(ports["clk"], ports["rst"], word, ports[f"{s}_tvalid"], ports[f"{s}_tready"],
+                 shown, tvalid, tready, stream.depth),
+            split(shown, 0, tdata),
+            split(shown, stream.beat, tkeep),
+            unpack_beats(ports["clk"], ports["rst"], tdata, tkeep, tvalid, tready,
+                         ports[f"{c}_dout"], ports[f"{c}_empty_n"], ports[f"{c}_read"]),
+        ]  # fmt: skip
     for sink in shape.sinks:
         s, c = sink.stream, sink.core
         parts.append(

@@ -22,7 +22,13 @@ from rfc.ir.model import AcceleratorKind, AcceleratorType, Block
 from rfc.lib.converters.ports import Direction, Port, PortRole
 from rfc.lib.hls.adapter import AdapterShape, StreamPort
 from rfc.lib.interface import typed_block
-from rfc.lower.hls_ports import CorePort, CoreStream, accelerator_core, vitis_directives
+from rfc.lower.hls_ports import (
+    CorePort,
+    CoreStream,
+    accelerator_core,
+    input_holds,
+    vitis_directives,
+)
 from rfc.lower.netlist import EntityDecl, Mode, PortDecl
 from rfc.lower.system.components import (
     Component,
@@ -120,7 +126,7 @@ def accelerator_hardware(
             f"hardware; the kinds in the logic are {kinds}",
             location=accelerator.location,
         )
-    return builder(accelerator, block, ports, directory)
+    return builder(accelerator, block, ports, directory, width, limits)
 
 
 def entity_name(accelerator: AcceleratorType) -> str:
@@ -243,6 +249,8 @@ def _hls(
     block: Block,
     ports: Mapping[str, tuple[Pin, ...]],
     directory: Path,
+    width: int,
+    limits: Limits,
 ) -> AcceleratorHardware:
     top = accelerator.top or accelerator.name
     signatures = {port: tuple(pin.signal for pin in pins) for port, pins in ports.items()}
@@ -255,13 +263,18 @@ def _hls(
     for port in block.ports:
         wiring.pins[(port.name, f"{MESSAGE}_valid")] = ("control", f"{port.name}_valid")
         wiring.pins[(port.name, f"{MESSAGE}_ready")] = ("control", f"{port.name}_ready")
-    sources = {s.message_port: s for s in interface.streams if not s.output}
+    depths = {
+        (port, buffer.path): buffer.words for port, buffer in input_holds(block, width, limits)
+    }
+    held = [s for s in interface.streams if (s.message_port, s.path) in depths]
+    sources = {s.message_port: s for s in interface.streams if not s.output and s not in held}
     shape = AdapterShape(
         tuple(p.name for p in block.inputs),
         tuple((p.name, tuple(wiring.outputs.get(p.name, ()))) for p in block.outputs),
         tuple(_stream_in(sources.get(p.name)) for p in block.inputs),
         tuple(_stream_out(s) for s in interface.streams if s.output),
         tuple(wiring.lengths),
+        tuple(_stream_out(s, depths[(s.message_port, s.path)]) for s in held),
     )
     adapter = adapter_component(shape, directory, f"{entity_name(accelerator)}_ap_ctrl")
     core = EntityDecl(top, tuple(wiring.core), vlnv=f"xilinx.com:hls:{top}:1.0")
@@ -343,20 +356,23 @@ def _stream_in(stream: CoreStream | None) -> StreamPort | None:
     return StreamPort(stream.stream, f"{_CORE_SIDE}{stream.core}", stream.element, stream.beat)
 
 
-def _stream_out(stream: CoreStream) -> StreamPort:
-    return StreamPort(stream.stream, f"{_CORE_SIDE}{stream.core}", stream.element, stream.beat)
+def _stream_out(stream: CoreStream, depth: int = 0) -> StreamPort:
+    core = f"{_CORE_SIDE}{stream.core}"
+    return StreamPort(stream.stream, core, stream.element, stream.beat, depth)
 
 
-#: Builds the hardware of an accelerator type: (type, a block of it, its pins, output folder).
+#: Builds the hardware of an accelerator type: (type, a block of it, its pins, output folder,
+#: bus width, maxima).
 HardwareBuilder = Callable[
-    [AcceleratorType, Block, Mapping[str, tuple[Pin, ...]], Path], AcceleratorHardware
+    [AcceleratorType, Block, Mapping[str, tuple[Pin, ...]], Path, int, Limits],
+    AcceleratorHardware,
 ]
 #: The accelerator kinds that become logic, each with its builder.
 _BUILDERS: dict[AcceleratorKind, HardwareBuilder] = {
-    AcceleratorKind.MYHDL: lambda accelerator, _, ports, directory: _myhdl(
+    AcceleratorKind.MYHDL: lambda accelerator, _, ports, directory, *__: _myhdl(
         accelerator, ports, directory
     ),
-    AcceleratorKind.VHDL: lambda accelerator, _, ports, directory: _vhdl(
+    AcceleratorKind.VHDL: lambda accelerator, _, ports, directory, *__: _vhdl(
         accelerator, ports, directory
     ),
     AcceleratorKind.HLS: _hls,

@@ -211,7 +211,7 @@ def adapter_ports(shape: AdapterShape) -> list[Port]:
             Port(field, bits, into, PortRole.FIELD),
             Port(core, core_bits, out, PortRole.FIELD),
         ]
-    for source in (s for s in shape.sources if s is not None):
+    for source in (*(s for s in shape.sources if s is not None), *shape.held):
         s, c = source.stream, source.core
         ports += [
             Port(f"{s}_tdata", source.beat, into, PortRole.TDATA),

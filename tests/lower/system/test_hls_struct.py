@@ -270,5 +270,7 @@ def test_an_input_stream_before_a_field_the_core_reads_is_refused(tmp_path):
     sums = ROOT / "tests/runtime/systems/franka_hls/sums.yaml"
     message = refused(tmp_path, (sums.parent / "sums.cpp").read_text(), sums)
     assert "sums.yaml:" in message
-    assert "port 'state' selects 'q[0]' after the string or sequence 'header.frame_id'" in message
+    assert (
+        "port 'state' selects 'q[0]' after its last string or sequence 'header.frame_id'" in message
+    )
     assert "exclude 'q' or 'header.frame_id' from port 'state'" in message

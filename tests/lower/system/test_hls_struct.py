@@ -227,16 +227,22 @@ def test_the_vitis_run_disaggregates_the_structs_and_partitions_their_arrays(tmp
 
 
 def refused(tmp_path: Path, cpp: str, spec: Path = SPEC) -> str:
-    """The error of `rfc build` on a copy of `spec` whose C++ source is `cpp`."""
+    """The error of `rfc build` on a copy of `spec` whose C++ source is `cpp`.
+
+    `rfc check` must refuse it first, with the same error.
+    """
     folder = tmp_path / "spec"
     folder.mkdir()
     text = spec.read_text().replace("../../../../examples", str(ROOT / "examples"))
     (folder / spec.name).write_text(text)
     source = "sums.cpp" if "sums" in spec.name else "fold.cpp"
     (folder / source).write_text(cpp)
+    checked = run_rfc("check", folder / spec.name, cwd=ROOT)
     result = run_rfc("build", folder / spec.name, "-o", tmp_path / "b", cwd=ROOT)
-    assert result.returncode == 1
-    assert "Traceback" not in result.stderr
+    for run in (checked, result):
+        assert run.returncode == 1
+        assert "Traceback" not in run.stderr
+    assert checked.stderr == result.stderr
     assert not (tmp_path / "b").exists()
     return result.stderr
 

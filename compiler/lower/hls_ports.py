@@ -319,6 +319,16 @@ def _struct_fields(name: str, argument: HlsArgument, pins: Sequence[Port]) -> li
     """The struct's members as core ports: fields and stream lengths."""
     ports = []
     output = _is_output(pins)
+    for pin in _members(name, pins):
+        core = "_".join(str(step) for step in (argument.name, *pin.member))
+        bits = pin.bits if pin.role is PortRole.FIELD else LENGTH_BITS
+        ports.append(CorePort(name, pin.name, core, pin.bits, output, bits))
+    return ports
+
+
+def _members(name: str, pins: Sequence[Port]) -> list[Port]:
+    """The struct's members among a port's pins; what the logic does not wire refused."""
+    members = []
     for pin in pins:
         if pin.group == ROOT and pin.role in (PortRole.VALID, PortRole.READY):
             continue
@@ -328,10 +338,22 @@ def _struct_fields(name: str, argument: HlsArgument, pins: Sequence[Port]) -> li
             raise _refusal(name, pin, "a sequence of messages or of strings")
         if pin.is_wire:
             raise _refusal(name, pin, "a bool")
-        core = "_".join(str(step) for step in (argument.name, *pin.member))
-        bits = pin.bits if pin.role is PortRole.FIELD else LENGTH_BITS
-        ports.append(CorePort(name, pin.name, core, pin.bits, output, bits))
-    return ports
+        members.append(pin)
+    return members
+
+
+def logic_refusal(name: str, pins: Sequence[Port]) -> RfcError | None:
+    """Why a port in the struct form cannot reach a core in the logic, or None if it can.
+
+    `rfc stub` says so in the skeleton: the function C-simulates all the same.
+    """
+    try:
+        _members(name, pins)
+        if not _is_output(pins):
+            _check_order(name, pins)
+    except RfcError as exc:
+        return exc
+    return None
 
 
 def _check_order(name: str, pins: Sequence[Port]) -> None:

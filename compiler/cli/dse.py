@@ -274,9 +274,11 @@ def _project(
     from rfc.dse.objective import DEFAULT_OBJECTIVE, parse_objective
     from rfc.dse.output import recommendation_document, write_recommendation
     from rfc.dse.project import recommend
+    from rfc.passes.pipeline import MODEL_PIPELINE
 
     criteria = parse_objective(objective or ",".join(DEFAULT_OBJECTIVE))
-    design = compile_spec(str(spec))
+    # the publishers' traffic is the model's: accelerators still being written do not matter
+    design = compile_spec(str(spec), pipeline=MODEL_PIPELINE)
     _compile_kernels()
     console = Console(stderr=True, highlight=False)
     with Progress(

@@ -26,7 +26,7 @@ from pathlib import Path
 from rfc.errors import RfcError, SourceLocation, did_you_mean
 
 #: C/C++ scalar types and their widths in bits.
-_SCALARS = {
+SCALAR_BITS = {
     "double": 64,
     "float": 32,
     "bool": 1,
@@ -113,11 +113,11 @@ def _arguments(path: Path, text: str, start: int, params: str):
         output = "*" in tokens or "&" in tokens
         ctype = " ".join(t for t in tokens[:-1] if t not in ("*", "&", "const", "volatile"))
         compact = ctype.replace(" ", "")
-        if _STREAM.match(compact) or (_STRUCT.match(compact) and compact not in _SCALARS):
+        if _STREAM.match(compact) or (_STRUCT.match(compact) and compact not in SCALAR_BITS):
             kind = ArgumentKind.STREAM if _STREAM.match(compact) else ArgumentKind.STRUCT
             yield HlsArgument(name, compact, 0, output, location, kind)
             continue
-        bits = _SCALARS.get(ctype)
+        bits = SCALAR_BITS.get(ctype)
         if bits is None and (ap := _AP_INT.match(ctype.replace(" ", ""))):
             bits = int(ap.group(1))
         if bits is None or not re.fullmatch(r"[A-Za-z_]\w*", name):

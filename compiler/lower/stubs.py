@@ -10,6 +10,7 @@ accepted and dropped, outputs stay idle, until the user writes the logic.
 
 from __future__ import annotations
 
+import textwrap
 from collections.abc import Iterator, Sequence
 from dataclasses import replace
 from enum import StrEnum
@@ -19,6 +20,7 @@ from rfc.ir.model import AcceleratorType, Block, Design, Direction
 from rfc.ir.model import Port as ModelPort
 from rfc.lib.converters.ports import PortRole, member_text
 from rfc.lower.hls_headers import port_signatures
+from rfc.lower.hls_ports import logic_refusal
 from rfc.lower.hls_types import hls_header, hls_stub
 from rfc.lower.system.interfaces import Pin, accelerator_pins
 from rfc.messages.rosbags_adapter import MessageTypes
@@ -253,11 +255,23 @@ def _hls(design: Design, accelerator: AcceleratorType, block: Block) -> str:
     signatures, directions = port_signatures(design, block)
     name, top = accelerator.name, _function_name(accelerator)
     hls_header(name, signatures, directions, top)  # refuses what no struct can carry
+    refusals = [
+        line
+        for port, pins in signatures.items()
+        if (refusal := logic_refusal(port, pins)) is not None
+        for line in _comment(f"Not for the logic as selected: {refusal.message}; {refusal.hint}.")
+    ]
     return (
         f"// {name}: an HLS accelerator (skeleton written by rfc stub). rfc build writes\n"
         f"// {name}_messages.h into hls/, and rfc sim compiles against it (C simulation).\n"
+        + "".join(refusals)
         + hls_stub(name, signatures, directions, top)
     )
+
+
+def _comment(text: str, width: int = 96) -> list[str]:
+    """`text` as C++ comment lines of at most `width` characters."""
+    return [f"// {line}\n" for line in textwrap.wrap(text, width - 3)]
 
 
 def _reference(

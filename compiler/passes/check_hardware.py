@@ -91,6 +91,8 @@ class CheckHardware:
             if accelerator.name not in checked:
                 checked.add(accelerator.name)
                 check_sources(accelerator, signatures)
+            if accelerator.kind is AcceleratorKind.HLS:
+                buffers[block.name] = hls_fifos(block, width, limits)
         check_fan_out(design)
         check_buffer_memory(design, buffers)
         return replace(design, stage=Stage.CHECKED)
@@ -351,11 +353,29 @@ def check_buffer_memory(design: Design, buffers: Mapping[str, tuple[Buffer, ...]
     )
 
 
-#: Per accelerator kind, how its source is checked against its message signatures (HLS
-#: functions are read by the lowering; ROS-SW functions run on messages, not ports).
+def hls_core(accelerator: AcceleratorType, signatures: Mapping[str, Sequence[Port]]) -> object:
+    """Match an HLS top function with its ports as the lowering does.
+
+    Imported late: the lowering imports this module.
+    """
+    from rfc.lower.hls_ports import accelerator_core
+
+    return accelerator_core(accelerator, signatures)
+
+
+def hls_fifos(block: Block, width: int, limits: Limits) -> tuple[Buffer, ...]:
+    """The FIFOs an HLS block's wrapper holds its input ports' earlier streams in."""
+    from rfc.lower.hls_ports import input_holds
+
+    return tuple(buffer for _, buffer in input_holds(block, width, limits))
+
+
+#: Per accelerator kind, how its source is checked against its message signatures (ROS-SW
+#: functions run on messages, not ports).
 _SOURCE_CHECKS: dict[
     AcceleratorKind, Callable[[AcceleratorType, Mapping[str, Sequence[Port]]], object]
 ] = {
     AcceleratorKind.MYHDL: lambda a, signatures: takes_interfaces(a, block_function(a), signatures),
     AcceleratorKind.VHDL: lambda a, signatures: vhdl_entity(a, flat_ports(signatures)),
+    AcceleratorKind.HLS: hls_core,
 }

@@ -6,14 +6,15 @@ A converter's sub-stream carries a beat of ``beat`` bytes holding ``beat // elem
 ``read`` on an input, ``din``/``full_n``/``write`` on an output (Vitis HLS UG1399).
 
 `unpack_beats` hands a subscriber's beats to the core element by element (``tkeep`` marks the
-elements of a partial last beat) and takes a beat when its last element is read. `pack_elements`
-gathers the core's elements into beats for a publisher, which takes exactly ``length`` elements:
-a beat goes out when full or when the elements written reach ``length`` (a length counter, read
-as each element is written), and the count starts again for the next message once the beat that
-ends it is taken.
+elements of a partial last beat) and takes a beat when its last element is read.
 
-These are the building blocks of wiring struct/stream HLS cores into the logic, which rfc does
-not do yet (docs/system.md, known limits).
+`pack_elements` gathers the core's elements into beats for a publisher, which takes exactly the
+length the core sets: a beat goes out when full, and a partial last beat when ``flush`` pulses
+(the wrapper pulses it at ``ap_done``, when every element is written). The length need not be
+known while the elements are written: Vitis HLS may write the length's ``ap_vld`` port after
+the stream.
+
+The wrapper of HLS cores (`rfc.lib.hls.adapter`) instantiates both.
 """
 
 from __future__ import annotations
@@ -79,40 +80,43 @@ def pack_elements(
     din: Any,
     full_n: Any,
     write: Any,
-    length: Any,
+    flush: Any,
     tdata: Any,
     tvalid: Any,
     tready: Any,
 ) -> Any:
-    """Gather elements into beats (the first in the low bytes); send at full or at ``length``."""
+    """Gather elements into beats (the first in the low bytes); send when full or flushed."""
     element_bits = len(din)
     per_beat = len(tdata) // element_bits
     fill = Signal(intbv(0, min=0, max=per_beat))
-    count = Signal(intbv(0)[len(length) :])
     beat = Signal(intbv(0)[len(tdata) :])
     pending = Signal(bool(0))
-    closing = Signal(bool(0))  # the pending beat ends the message
+    flushing = Signal(bool(0))  # a partial beat is to go before any new element
 
     @always_comb
     def outputs() -> None:
         tdata.next = beat
         tvalid.next = pending
-        full_n.next = not pending
+        full_n.next = not pending and not flushing
 
     @always_seq(clk.posedge, reset=rst)
     def gather() -> None:
-        if pending and tready:
-            pending.next = 0
-            beat.next = 0
-            if closing:
-                count.next = 0
-        elif write and not pending:
+        if flush:
+            flushing.next = 1
+        if pending:
+            if tready:
+                pending.next = 0
+                beat.next = 0
+        elif flushing:
+            flushing.next = 0
+            if fill != 0:
+                pending.next = 1
+                fill.next = 0
+        elif write:
             for k in range(per_beat):
                 if fill == k:
                     beat.next[(k + 1) * element_bits : k * element_bits] = din
-            count.next = count + 1
-            closing.next = count + 1 == length
-            if fill == per_beat - 1 or count + 1 == length:
+            if fill == per_beat - 1:
                 pending.next = 1
                 fill.next = 0
             else:

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import csv
 import json
+import shutil
 import sys
 from pathlib import Path
 
@@ -165,6 +166,20 @@ def test_project_recommendation_with_reasons(tmp_path):
     ranking = json.loads(custom.stdout)["ranking"]
     responses = [c["metrics"]["response"] for c in ranking if c["metrics"]["completed"] == 6]
     assert responses == sorted(responses)
+
+
+def test_a_spec_whose_accelerator_is_still_a_stub_gets_a_recommendation(tmp_path):
+    # the schedulers see only the publishers' traffic; `rfc check` refuses the empty function
+    shutil.copy(HUB, tmp_path / HUB.name)
+    (tmp_path / "state_estimator.cpp").write_text("void StateEstimator() {}\n")
+    result = run_rfc("dse", tmp_path / HUB.name, "--horizon", "2000", "--json")
+    assert result.returncode == 0, result.stderr
+    assert json.loads(result.stdout)["recommended"]
+    checked = run_rfc("check", tmp_path / HUB.name)
+    assert checked.returncode == 1
+    assert "HLS top function StateEstimator of accelerator 'StateEstimator' has 0" in (
+        checked.stderr
+    )
 
 
 def test_build_uses_the_recommendation(tmp_path):

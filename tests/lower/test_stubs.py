@@ -8,6 +8,7 @@ objects, VHDL flat ports, a ROS-SW function), and GHDL must accept the logic.
 from __future__ import annotations
 
 import ast
+import shutil
 import subprocess
 from pathlib import Path
 
@@ -117,3 +118,49 @@ def test_the_hls_skeleton_takes_the_franka_state_as_one_struct_and_compiles(tmp_
         capture_output=True, text=True, check=False,
     )  # fmt: skip
     assert compiled.returncode == 0, compiled.stderr
+
+
+#: Specs with HLS accelerators whose ports the logic takes: (folder to copy, spec, accelerator,
+#: its source relative to the copy).
+HLS_SPECS = {
+    "sensor_hub": (ROOT / "examples/sensor_hub", "SensorHub.yaml", "StateEstimator",
+                   "state_estimator.cpp"),
+    "two streams in": (ROOT / "tests/lower/system", "hls_gray/gray.yaml", "RgbToGray",
+                       "hls_image/rgb_to_gray.cpp"),
+    "one stream in": (ROOT / "tests/lower/system", "hls_invert/invert.yaml", "Invert",
+                      "hls_invert/invert.cpp"),
+}  # fmt: skip
+
+
+@pytest.mark.parametrize("case", HLS_SPECS)
+def test_each_hls_skeleton_passes_the_checks_of_the_logic(tmp_path, case):
+    folder, spec, accelerator, source = HLS_SPECS[case]
+    copy = tmp_path / "spec"
+    shutil.copytree(folder, copy)
+    (copy / source).unlink()  # written from scratch by rfc stub
+    text = stub(copy / spec, accelerator, "hls")
+    assert "Not for the logic" not in text
+    (copy / source).write_text(text)
+    checked = run_rfc("check", copy / spec)
+    assert checked.returncode == 0, checked.stderr
+
+
+def test_the_franka_hls_skeleton_passes_the_checks_without_frame_id(tmp_path):
+    spec = franka_spec(tmp_path, "HLS", "kinematics.cpp")
+    spec.write_text(spec.read_text().replace("include: [header,", "include: [header.stamp,"))
+    (tmp_path / "kinematics.cpp").write_text(stub(spec, "Kinematics", "hls"))
+    checked = run_rfc("check", spec)
+    assert checked.returncode == 0, checked.stderr
+
+
+def test_an_hls_skeleton_says_why_the_logic_refuses_its_port(tmp_path):
+    # FrankaState's header.frame_id comes before q: the core would start before q is parsed
+    spec = franka_spec(tmp_path, "HLS", "kinematics.cpp")
+    text = stub(spec, "Kinematics", "hls")
+    (tmp_path / "kinematics.cpp").write_text(text)
+    checked = run_rfc("check", spec)
+    assert checked.returncode == 1
+    said = " ".join(line.removeprefix("// ") for line in text.splitlines()[2:6])
+    assert "Not for the logic as selected: port 'state' selects 'q[0]' after its last" in said
+    assert "exclude 'q' or 'header.frame_id' from port 'state'" in said
+    assert "port 'state' selects 'q[0]' after its last string or sequence" in checked.stderr

@@ -80,6 +80,23 @@ CASES = {
         lambda f: write_spec(f, STREAM_FAN_OUT, pass__py=PASS_THROUGH),
         "a message with strings or sequences ('header.frame_id') cannot feed several blocks",
     ),
+    "hls scalar arguments off its messages": (
+        lambda f: write_spec(
+            f,
+            point_system("HLS", "pass.cpp", "Pass"),
+            pass__cpp="void Pass(double x, double *a) {}\n",
+        ),
+        "pass.cpp:1:11: HLS top function Pass of accelerator 'PassPoint' has 2 arguments; its "
+        "messages need 6",
+    ),
+    "hls struct of the other port": (
+        lambda f: write_spec(
+            f,
+            point_system("HLS", "pass.cpp", "Pass"),
+            pass__cpp='#include "PassPoint_messages.h"\nvoid Pass(out0_t in0, out0_t *out0) {}\n',
+        ),
+        "argument 'in0' of HLS top function Pass is a out0_t; expected in0_t in0",
+    ),
     "buffers beyond the block ram": (
         multi_type_at_default_maxima,
         "the logic's buffers need 3,339 block RAMs of 36 Kb at the project's maxima",

@@ -20,7 +20,8 @@ foreach command {
     create_project set_property update_ip_catalog update_compile_order create_bd_design
     apply_bd_automation assign_bd_address validate_bd_design save_bd_design launch_runs
     wait_on_run write_hw_platform open_project set_top open_solution set_part create_clock
-    csynth_design export_design
+    csynth_design export_design set_directive_interface set_directive_disaggregate
+    set_directive_array_partition
 } {
     proc $command {args} "rfc_record $command {*}\$args"
 }

@@ -5,8 +5,9 @@ between them, and where each of its message pins (`rfc.lower.system.interfaces`)
 blocks are elaborated with the convention's port signals and converted; VHDL entities are read
 with GHDL's parser and checked against the convention; an HLS top function becomes the Vitis
 HLS core (an IP cell) beside rfc's ap_ctrl wrapper (`rfc.lib.hls.adapter`): the core reads its
-inputs straight from the subscribers' fields, the wrapper drives its control and holds its
-outputs. Cell ports named ``clk``/``ap_clk`` go on the clock, ``rst``/``ap_rst`` on the reset.
+fixed inputs straight from the subscribers' fields, the wrapper drives its control, adapts its
+streams and lengths (`rfc.lower.hls_ports` names the core's ports) and holds its outputs.
+Cell ports named ``clk``/``ap_clk`` go on the clock, ``rst``/``ap_rst`` on the reset.
 """
 
 from __future__ import annotations
@@ -18,11 +19,16 @@ from pathlib import Path
 
 from rfc.errors import RfcError
 from rfc.ir.model import AcceleratorKind, AcceleratorType, Block
-from rfc.ir.model import Port as ModelPort
 from rfc.lib.converters.ports import Direction, Port, PortRole
-from rfc.lib.hls.adapter import AdapterShape
+from rfc.lib.hls.adapter import AdapterShape, StreamPort
 from rfc.lib.interface import typed_block
-from rfc.lower.hls_signature import ArgumentKind, HlsArgument, read_top_function
+from rfc.lower.hls_ports import (
+    CorePort,
+    CoreStream,
+    accelerator_core,
+    input_holds,
+    vitis_directives,
+)
 from rfc.lower.netlist import EntityDecl, Mode, PortDecl
 from rfc.lower.system.components import (
     Component,
@@ -52,18 +58,32 @@ _HLS_CONTROL = (
     PortDecl("ap_idle", Mode.OUT, 1, True),
     PortDecl("ap_ready", Mode.OUT, 1, True),
 )
-
-
-_ARGUMENT_ORDER = "inputs' fields by value, then outputs' fields by pointer (docs/accelerators.md)"
+#: A core's ap_fifo ports, for an output stream (True) and an input one: (suffix, the core's
+#: mode, whether it carries an element rather than one bit).
+_FIFO_PORTS = {
+    True: (("din", Mode.OUT, True), ("full_n", Mode.IN, False), ("write", Mode.OUT, False)),
+    False: (("dout", Mode.IN, True), ("empty_n", Mode.IN, False), ("read", Mode.OUT, False)),
+}
+#: Prefix of the ap_ctrl wrapper's inputs from the core's outputs.
+_CORE_SIDE = "core_"
 
 
 @dataclass(frozen=True)
 class HlsCore:
-    """An HLS accelerator's core, for the Vitis HLS script: top function and its sources."""
+    """An HLS accelerator's core, for the Vitis HLS script.
+
+    Attributes:
+        accelerator: The accelerator type's name.
+        top: The top function.
+        sources: Its C++ sources.
+        directives: Vitis HLS directives (tcl) that give the core its ports
+            (`rfc.lower.hls_ports.vitis_directives`).
+    """
 
     accelerator: str
     top: str
     sources: tuple[Path, ...]
+    directives: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -106,7 +126,7 @@ def accelerator_hardware(
             f"hardware; the kinds in the logic are {kinds}",
             location=accelerator.location,
         )
-    return builder(accelerator, block, ports, directory)
+    return builder(accelerator, block, ports, directory, width, limits)
 
 
 def entity_name(accelerator: AcceleratorType) -> str:
@@ -229,119 +249,130 @@ def _hls(
     block: Block,
     ports: Mapping[str, tuple[Pin, ...]],
     directory: Path,
+    width: int,
+    limits: Limits,
 ) -> AcceleratorHardware:
     top = accelerator.top or accelerator.name
-    arguments = read_top_function(list(accelerator.sources), top)
-    aggregate = next((a for a in arguments if a.kind is not ArgumentKind.SCALAR), None)
-    if aggregate is not None:
-        raise RfcError(
-            f"HLS top function {top} of accelerator '{accelerator.name}' takes message structs "
-            f"and streams ('{aggregate.ctype} {aggregate.name}'): `rfc sim` C-simulates it, but "
-            "rfc does not wire such cores into the logic yet",
-            location=aggregate.location,
-            hint="simulate the system with `rfc sim`; to build the logic, give the top function "
-            "scalar arguments, or write the accelerator in MyHDL or VHDL",
-        )
-    fields: list[tuple[ModelPort, Pin]] = []
+    signatures = {port: tuple(pin.signal for pin in pins) for port, pins in ports.items()}
+    arguments, interface = accelerator_core(accelerator, signatures)
+    wiring = _HlsWiring({pin.signal.name: pin for pins in ports.values() for pin in pins})
+    for core_port in interface.ports:
+        wiring.add_field(core_port)
+    for stream in interface.streams:
+        wiring.add_stream(stream)
     for port in block.ports:
-        for pin in ports[port.name]:
-            if pin.role in (PortRole.VALID, PortRole.READY) and pin.group == MESSAGE:
-                continue
-            if pin.role is not PortRole.FIELD or pin.group != MESSAGE:
-                raise _hls_refusal(accelerator, port, pin, "a string or sequence")
-            if pin.port.wire:
-                raise _hls_refusal(accelerator, port, pin, "a bool")
-            fields.append((port, pin))
-    _check_arguments(accelerator, top, arguments, fields)
-    core_ports = list(_HLS_CONTROL)
-    shape_outputs: dict[str, list[tuple[str, str, int]]] = {}
-    pins: dict[tuple[str, str], tuple[str, str]] = {}
-    wires = [("control", n, "core", n) for n in ("ap_start",)]
-    wires += [("core", n, "control", n) for n in ("ap_done", "ap_idle", "ap_ready")]
-    for (port, pin), argument in zip(fields, arguments, strict=True):
-        if argument.output:
-            core_ports += [
-                PortDecl(argument.name, Mode.OUT, argument.bits),
-                PortDecl(f"{argument.name}_ap_vld", Mode.OUT, 1, True),
-            ]
-            shape_outputs.setdefault(port.name, []).append(
-                (pin.port.name, argument.name, argument.bits)
-            )
-            wires += [
-                ("core", argument.name, "control", argument.name),
-                ("core", f"{argument.name}_ap_vld", "control", f"{argument.name}_ap_vld"),
-            ]
-            pins[(port.name, pin.role_name)] = ("control", pin.port.name)
-        else:
-            core_ports.append(PortDecl(argument.name, Mode.IN, argument.bits))
-            pins[(port.name, pin.role_name)] = ("core", argument.name)
-    inputs = tuple(p.name for p in block.inputs)
-    for port in block.ports:
-        pins[(port.name, f"{MESSAGE}_valid")] = ("control", f"{port.name}_valid")
-        pins[(port.name, f"{MESSAGE}_ready")] = ("control", f"{port.name}_ready")
+        wiring.pins[(port.name, f"{MESSAGE}_valid")] = ("control", f"{port.name}_valid")
+        wiring.pins[(port.name, f"{MESSAGE}_ready")] = ("control", f"{port.name}_ready")
+    depths = {
+        (port, buffer.path): buffer.words for port, buffer in input_holds(block, width, limits)
+    }
+    held = [s for s in interface.streams if (s.message_port, s.path) in depths]
+    sources = {s.message_port: s for s in interface.streams if not s.output and s not in held}
     shape = AdapterShape(
-        inputs, tuple((p.name, tuple(shape_outputs.get(p.name, ()))) for p in block.outputs)
+        tuple(p.name for p in block.inputs),
+        tuple((p.name, tuple(wiring.outputs.get(p.name, ()))) for p in block.outputs),
+        tuple(_stream_in(sources.get(p.name)) for p in block.inputs),
+        tuple(_stream_out(s) for s in interface.streams if s.output),
+        tuple(wiring.lengths),
+        tuple(_stream_out(s, depths[(s.message_port, s.path)]) for s in held),
     )
     adapter = adapter_component(shape, directory, f"{entity_name(accelerator)}_ap_ctrl")
-    core = EntityDecl(top, tuple(core_ports), vlnv=f"xilinx.com:hls:{top}:1.0")
+    core = EntityDecl(top, tuple(wiring.core), vlnv=f"xilinx.com:hls:{top}:1.0")
     return AcceleratorHardware(
         (adapter,),
         (("core", core), ("control", adapter.entity)),
-        tuple(wires),
-        pins,
-        HlsCore(accelerator.name, top, tuple(accelerator.sources)),
+        tuple(wiring.wires),
+        wiring.pins,
+        HlsCore(
+            accelerator.name,
+            top,
+            tuple(accelerator.sources),
+            vitis_directives(top, arguments, signatures),
+        ),
     )
 
 
-def _hls_refusal(accelerator: AcceleratorType, port: ModelPort, pin: Pin, what: str) -> RfcError:
-    return RfcError(
-        f"HLS accelerator '{accelerator.name}': port '{port.name}' carries {what} "
-        f"('{pin.role_name}'); rfc connects HLS cores through scalar arguments only",
-        location=accelerator.location,
-        hint=f"exclude it from port '{port.name}', or write the accelerator in MyHDL or VHDL",
+@dataclass
+class _HlsWiring:
+    """The core's ports and the wires between the core, the wrapper and the message pins."""
+
+    by_field: Mapping[str, Pin]
+    core: list[PortDecl] = field(default_factory=lambda: list(_HLS_CONTROL))
+    wires: list[tuple[str, str, str, str]] = field(
+        default_factory=lambda: [
+            ("control", "ap_start", "core", "ap_start"),
+            *(("core", n, "control", n) for n in ("ap_done", "ap_idle", "ap_ready")),
+        ]
     )
+    pins: dict[tuple[str, str], tuple[str, str]] = field(default_factory=dict)
+    outputs: dict[str, list[tuple[str, str, int, int]]] = field(default_factory=dict)
+    lengths: list[tuple[str, str, int, int]] = field(default_factory=list)
 
-
-def _check_arguments(
-    accelerator: AcceleratorType,
-    top: str,
-    arguments: tuple[HlsArgument, ...],
-    fields: list[tuple[ModelPort, Pin]],
-) -> None:
-    expected = [
-        f"{pin.port.bits}-bit {'output' if port.direction.value == 'out' else 'input'} "
-        f"for {port.name}.{pin.role_name}"
-        for port, pin in fields
-    ]
-    if len(arguments) != len(fields):
-        raise RfcError(
-            f"HLS top function {top} of accelerator '{accelerator.name}' has "
-            f"{len(arguments)} arguments; its messages need {len(fields)}: " + ", ".join(expected),
-            location=arguments[0].location if arguments else accelerator.location,
-            hint=_ARGUMENT_ORDER,
-        )
-    for argument, (port, pin), want in zip(arguments, fields, expected, strict=True):
-        output = port.direction.value == "out"
-        if argument.output != output or argument.bits != pin.port.bits:
-            kind = "output" if argument.output else "input"
-            raise RfcError(
-                f"argument '{argument.name}' of HLS top function {top} is a {argument.bits}-bit "
-                f"{kind}; expected a {want}",
-                location=argument.location,
-                hint=_ARGUMENT_ORDER,
+    def add_field(self, port: CorePort) -> None:
+        """A field or length: straight into the core, or through the wrapper."""
+        pin = self.by_field[port.field]
+        name, bits = port.core, port.core_bits
+        held = f"{_CORE_SIDE}{name}"  # the wrapper's name: a member's may be the field's
+        if port.output:
+            self.core += [
+                PortDecl(name, Mode.OUT, bits),
+                PortDecl(f"{name}_ap_vld", Mode.OUT, 1, True),
+            ]
+            self.outputs.setdefault(port.message_port, []).append(
+                (pin.port.name, held, port.bits, bits)
             )
+            self.wires += [
+                ("core", name, "control", held),
+                ("core", f"{name}_ap_vld", "control", f"{held}_ap_vld"),
+            ]
+            self.pins[(port.message_port, pin.role_name)] = ("control", pin.port.name)
+        elif port.length:  # widened to the core's uint32_t by the wrapper
+            self.core.append(PortDecl(name, Mode.IN, bits))
+            self.lengths.append((pin.port.name, held, port.bits, bits))
+            self.wires.append(("control", held, "core", name))
+            self.pins[(port.message_port, pin.role_name)] = ("control", pin.port.name)
+        else:
+            self.core.append(PortDecl(name, Mode.IN, bits))
+            self.pins[(port.message_port, pin.role_name)] = ("core", name)
+
+    def add_stream(self, stream: CoreStream) -> None:
+        """A stream: its sub-stream pins on the wrapper, its ap_fifo between wrapper and core."""
+        for suffix in ("tdata", "tkeep", "tvalid", "tready", "tlast"):
+            pin = self.by_field.get(f"{stream.stream}_{suffix}")
+            if pin is not None:
+                self.pins[(stream.message_port, pin.role_name)] = ("control", pin.port.name)
+        arg, held = stream.core, f"{_CORE_SIDE}{stream.core}"
+        for suffix, mode, data in _FIFO_PORTS[stream.output]:
+            self.core.append(
+                PortDecl(f"{arg}_{suffix}", mode, stream.element if data else 1, not data)
+            )
+            core, wrapper = ("core", f"{arg}_{suffix}"), ("control", f"{held}_{suffix}")
+            self.wires.append((*core, *wrapper) if mode is Mode.OUT else (*wrapper, *core))
 
 
-#: Builds the hardware of an accelerator type: (type, a block of it, its pins, output folder).
+def _stream_in(stream: CoreStream | None) -> StreamPort | None:
+    if stream is None:
+        return None
+    return StreamPort(stream.stream, f"{_CORE_SIDE}{stream.core}", stream.element, stream.beat)
+
+
+def _stream_out(stream: CoreStream, depth: int = 0) -> StreamPort:
+    core = f"{_CORE_SIDE}{stream.core}"
+    return StreamPort(stream.stream, core, stream.element, stream.beat, depth)
+
+
+#: Builds the hardware of an accelerator type: (type, a block of it, its pins, output folder,
+#: bus width, maxima).
 HardwareBuilder = Callable[
-    [AcceleratorType, Block, Mapping[str, tuple[Pin, ...]], Path], AcceleratorHardware
+    [AcceleratorType, Block, Mapping[str, tuple[Pin, ...]], Path, int, Limits],
+    AcceleratorHardware,
 ]
 #: The accelerator kinds that become logic, each with its builder.
 _BUILDERS: dict[AcceleratorKind, HardwareBuilder] = {
-    AcceleratorKind.MYHDL: lambda accelerator, _, ports, directory: _myhdl(
+    AcceleratorKind.MYHDL: lambda accelerator, _, ports, directory, *__: _myhdl(
         accelerator, ports, directory
     ),
-    AcceleratorKind.VHDL: lambda accelerator, _, ports, directory: _vhdl(
+    AcceleratorKind.VHDL: lambda accelerator, _, ports, directory, *__: _vhdl(
         accelerator, ports, directory
     ),
     AcceleratorKind.HLS: _hls,

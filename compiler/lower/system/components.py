@@ -196,14 +196,41 @@ def adapter_ports(shape: AdapterShape) -> list[Port]:
             Port(f"{port}_ready", 1, out, PortRole.READY),
         ]
     for port, fields in shape.outputs:
-        for field, core, bits in fields:
+        for field, core, bits, core_bits in fields:
             ports += [
-                Port(core, bits, into, PortRole.FIELD),
+                Port(core, core_bits, into, PortRole.FIELD),
                 Port(f"{core}_ap_vld", 1, into, PortRole.VALID),
                 Port(field, bits, out, PortRole.FIELD),
             ]
         ports += [
             Port(f"{port}_valid", 1, out, PortRole.VALID),
             Port(f"{port}_ready", 1, into, PortRole.READY),
+        ]
+    for field, core, bits, core_bits in shape.lengths:
+        ports += [
+            Port(field, bits, into, PortRole.FIELD),
+            Port(core, core_bits, out, PortRole.FIELD),
+        ]
+    for source in (*(s for s in shape.sources if s is not None), *shape.held):
+        s, c = source.stream, source.core
+        ports += [
+            Port(f"{s}_tdata", source.beat, into, PortRole.TDATA),
+            Port(f"{s}_tkeep", source.beat // 8, into, PortRole.TKEEP),
+            Port(f"{s}_tvalid", 1, into, PortRole.TVALID),
+            Port(f"{s}_tready", 1, out, PortRole.TREADY),
+            Port(f"{s}_tlast", 1, into, PortRole.TLAST),
+            Port(f"{c}_dout", source.element, out, PortRole.FIELD),
+            Port(f"{c}_empty_n", 1, out, PortRole.VALID),
+            Port(f"{c}_read", 1, into, PortRole.READY),
+        ]
+    for sink in shape.sinks:
+        s, c = sink.stream, sink.core
+        ports += [
+            Port(f"{c}_din", sink.element, into, PortRole.FIELD),
+            Port(f"{c}_full_n", 1, out, PortRole.READY),
+            Port(f"{c}_write", 1, into, PortRole.VALID),
+            Port(f"{s}_tdata", sink.beat, out, PortRole.TDATA),
+            Port(f"{s}_tvalid", 1, out, PortRole.TVALID),
+            Port(f"{s}_tready", 1, into, PortRole.TREADY),
         ]
     return ports

@@ -9,12 +9,18 @@ source [file join $here values.tcl]
 
 open_project -reset [file join $here project]
 set_top $hls(top)
+# <accelerator>_messages.h, which struct-taking sources include, is in the folder above
+set include [file normalize [file join $here ..]]
 foreach source $hls(sources) {
-    add_files [file normalize [file join $here $source]] -cflags $hls(cflags)
+    add_files [file normalize [file join $here $source]] -cflags "$hls(cflags) -I$include"
 }
 open_solution -reset solution -flow_target vivado
 set_part $hls(part)
 create_clock -period $hls(clock_ns) -name default
+# the interface directives that give the core the ports rfc's wrapper connects
+foreach directive $hls(directives) {
+    eval $directive
+}
 csynth_design
 export_design -format ip_catalog -rtl vhdl
 exit

@@ -2,7 +2,7 @@
 
 Under random valid/ready on both sides every element comes out once, in order (the bytes of
 the beats read as little-endian elements by NumPy), a partial last beat included; the packer
-sends ceil(length · element / beat) beats per message and starts counting again for the next.
+sends ceil(length · element / beat) beats per message, the last when the message is flushed.
 Both convert to VHDL that GHDL analyses and elaborates.
 """
 
@@ -71,36 +71,37 @@ def unpack(beat: int, element: int, data: bytes, seed: int) -> list[int]:
 
 def pack(beat: int, element: int, messages: list[np.ndarray], seed: int) -> list[bytes]:
     clk, rst = clocked()
-    din, length = Signal(intbv(0)[8 * element :]), Signal(intbv(0)[16:])
-    full_n, write, tvalid, tready = (Signal(bool(0)) for _ in range(4))
+    din = Signal(intbv(0)[8 * element :])
+    full_n, write, flush, tvalid, tready = (Signal(bool(0)) for _ in range(5))
     tdata = Signal(intbv(0)[8 * beat :])
     received: list[bytes] = []
     total = sum(-(-len(m) * element // beat) for m in messages)
 
     @block
     def bench():
-        dut = pack_elements(clk, rst, din, full_n, write, length, tdata, tvalid, tready)
+        dut = pack_elements(clk, rst, din, full_n, write, flush, tdata, tvalid, tready)
 
         @always(delay(5))
         def tick():
             clk.next = not clk
 
         @instance
-        def drive():
+        def drive():  # a message's elements, then one flush pulse (ap_done), then the next
             rng = random.Random(seed)
-            pending = [(m, i) for m in messages for i in range(len(m))]
+            pending = [list(m) for m in messages]
             for _ in range(CYCLES):  # a stall ends the run with what came out
                 if len(received) == total:
                     break
                 yield clk.negedge
-                if pending:
-                    message, i = pending[0]
-                    length.next = len(message)
-                    din.next = int(message[i])
-                write.next = bool(pending) and rng.random() < 0.7
+                flush.next = bool(pending) and not pending[0] and rng.random() < 0.5
+                if pending and pending[0]:
+                    din.next = int(pending[0][0])
+                write.next = bool(pending) and bool(pending[0]) and rng.random() < 0.7
                 tready.next = rng.random() < 0.6
                 yield clk.posedge
                 if write and full_n:
+                    pending[0].pop(0)
+                if flush:
                     pending.pop(0)
                 if tvalid and tready:
                     received.append(int(tdata).to_bytes(beat, "little"))
@@ -122,7 +123,7 @@ def test_beats_become_the_elements_numpy_reads_in_their_bytes(beat, element):
 
 
 @pytest.mark.parametrize(("beat", "element"), SHAPES)
-def test_elements_become_beats_with_the_length_counted_per_message(beat, element):
+def test_elements_become_beats_with_a_partial_last_beat_at_each_flush(beat, element):
     rng = np.random.default_rng(beat * 10 + element)
     messages = [rng.integers(0, 2 ** (8 * element), size=n, dtype=np.uint64) for n in (5, 1, 9)]
     beats = pack(beat, element, messages, seed=beat + element)
@@ -139,12 +140,12 @@ def test_elements_become_beats_with_the_length_counted_per_message(beat, element
 def test_both_convert_to_vhdl_that_ghdl_elaborates(tmp_path):
     clk, rst = clocked()
     tdata, tkeep = Signal(intbv(0)[64:]), Signal(intbv(0)[8:])
-    din, dout, length = Signal(intbv(0)[16:]), Signal(intbv(0)[16:]), Signal(intbv(0)[21:])
-    flags = [Signal(bool(0)) for _ in range(7)]
+    din, dout = Signal(intbv(0)[16:]), Signal(intbv(0)[16:])
+    flags = [Signal(bool(0)) for _ in range(8)]
     unpacker = unpack_beats(clk, rst, tdata, tkeep, flags[0], flags[1], dout, flags[2], flags[3])
     files = convert_myhdl(unpacker, "unpack_beats_test", tmp_path, verilog=False)
     analyze(files, tmp_path, top="unpack_beats_test")
     beat = Signal(intbv(0)[64:])
-    packer = pack_elements(clk, rst, din, flags[4], flags[5], length, beat, flags[6], flags[0])
+    packer = pack_elements(clk, rst, din, flags[4], flags[5], flags[7], beat, flags[6], flags[0])
     files = convert_myhdl(packer, "pack_elements_test", tmp_path / "pack", verilog=False)
     analyze(files, tmp_path / "pack", top="pack_elements_test")

@@ -24,6 +24,7 @@ from rfc.lower.hls_ports import input_holds
 from rfc.messages.rosbags_adapter import message_types, write_bag
 from tests.lower.system.hls_cores import c_simulated, replay_with_stand_in
 from tests.support.cli import run_rfc
+from tests.support.vendor_check import check_vivado, run_script
 
 ROOT = Path(__file__).resolve().parents[3]
 HERE = Path(__file__).parent
@@ -213,6 +214,23 @@ def test_the_papers_hls_image_pipeline_passes_the_checks_of_the_logic(tmp_path):
     # every stage's function against its ports, the rule of the last stream, the block RAM
     result = run_rfc("check", PIPELINE, cwd=ROOT)
     assert result.returncode == 0, result.stderr
+
+
+def test_the_papers_hls_image_pipeline_builds_into_logic_and_scripts_that_hold(tmp_path):
+    out = tmp_path / "build"
+    result = run_rfc("build", PIPELINE, "-o", out, cwd=ROOT)
+    assert result.returncode == 0, result.stderr
+    cells = check_vivado(run_script(out / "vivado/build.tcl", tmp_path / "vivado.log"))
+    # each stage: the Vitis core and rfc's ap_ctrl_hs wrapper around it
+    for block in ("gray_acc", "downscale_acc", "integral_acc"):
+        assert {f"{block}_core", f"{block}_control"} <= cells.keys()
+    for stage, source in [("RgbToGray", "rgb_to_gray.cpp"), ("Downscale", "downscale.cpp")]:
+        hls = run_script(out / "hls" / stage / "run.tcl", tmp_path / f"{stage}.log")
+        assert hls.of("set_top") == [[[stage]]]
+        (added,) = hls.of("add_files")
+        assert Path(added[0][0]).name == source
+        # the structs become <arg>_<member> ports, as rfc's wrapper names them
+        assert [stage] in [names[0] for names in hls.of("set_directive_disaggregate")]
 
 
 @pytest.mark.parametrize(("width", "beats"), [(8, 16), (64, 2)])

@@ -1,10 +1,10 @@
 """MyHDL fixed-point multiply and multiply-accumulate, pipelined for the DSP48.
 
 The stages are the DSP48E1's own registers, so synthesis can fold them into the slice: operands
-(A/B registers), product (M register), sum (P register); a fabric register then rounds half up
-and saturates to the format. Both blocks take a pair every cycle (II = 1) and hold results
-until taken (the whole pipeline stalls). Latencies, in cycles from the input handshake to
-`out_valid`: `MULTIPLY_LATENCY`, `MAC_LATENCY`. Bit-exact with `rfc.lib.arith.mac`.
+(A/B registers), product (M register), product or sum (P register); a fabric register then
+rounds half up and saturates to the format. Both blocks take a pair every cycle (II = 1) and
+hold results until taken (the whole pipeline stalls). Latencies, in cycles from the input
+handshake to `out_valid`: `MULTIPLY_LATENCY`, `MAC_LATENCY`. Bit-exact with `rfc.lib.arith.mac`.
 """
 
 from __future__ import annotations
@@ -14,8 +14,9 @@ from myhdl import Signal, always_comb, always_seq, block, intbv
 from rfc.lib.arith.mac import MAC_GUARD_BITS
 from rfc.lib.fixed import FixedFormat
 
-#: Operand, product and result registers.
-MULTIPLY_LATENCY = 2
+#: Operand (A/B), product (M), P and rounded-result registers: Yosys folds the first three into
+#: a DSP48E1 (AREG, BREG, MREG, PREG all 1) when the operands fit one slice (25 x 18 signed).
+MULTIPLY_LATENCY = 3
 #: Operand, product, sum and rounded-result registers.
 MAC_LATENCY = 3
 
@@ -41,12 +42,11 @@ def fixed_multiply(clk, rst, in_valid, in_ready, a, b, out_valid, out_ready, pro
         fmt: The operands' and result's format.
     """
     a1, b1 = fmt.signal(), fmt.signal()
-    full = _signed(2 * fmt.width)
-    valid = [Signal(bool(0)) for _ in range(3)]
-    v1, v2, v3 = valid
+    full, held = _signed(2 * fmt.width), _signed(2 * fmt.width)
+    v1, v2, v3, v4 = (Signal(bool(0)) for _ in range(4))
     advance = Signal(bool(0))
     rounded = fmt.signal()
-    rounding = round_to_format(full, rounded, fmt)
+    rounding = round_to_format(held, rounded, fmt)
 
     @always_seq(clk.posedge, reset=rst)
     def stages():
@@ -56,14 +56,16 @@ def fixed_multiply(clk, rst, in_valid, in_ready, a, b, out_valid, out_ready, pro
             v1.next = in_valid
             full.next = a1 * b1
             v2.next = v1
-            product.next = rounded
+            held.next = full
             v3.next = v2
+            product.next = rounded
+            v4.next = v3
 
     @always_comb
     def control():
-        advance.next = out_ready or not v3
-        in_ready.next = out_ready or not v3
-        out_valid.next = v3
+        advance.next = out_ready or not v4
+        in_ready.next = out_ready or not v4
+        out_valid.next = v4
 
     return rounding, stages, control
 

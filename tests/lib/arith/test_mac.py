@@ -13,6 +13,7 @@ from rfc.lib.arith.mac import multiply, multiply_accumulate
 from rfc.lib.arith.mac_hdl import MAC_LATENCY, MULTIPLY_LATENCY, fixed_mac, fixed_multiply
 from rfc.lib.fixed import FixedFormat
 from rfc.toolchain import convert_myhdl
+from tests.lib.arith.synth import map_xc7
 from tests.support.cosim import run_handshake, signed, unsigned
 from tests.support.myhdl_stream import simulate_stream
 
@@ -172,3 +173,15 @@ def test_a_pair_every_cycle(block):
         backpressure=0.0,
     )
     assert set(np.diff(run.accepted)) == {1}
+
+
+def test_a_one_slice_multiply_uses_all_four_dsp48_registers(tmp_path):
+    fmt = FixedFormat(18, 16)  # 18 x 18 signed fits one DSP48E1 (25 x 18)
+    signals = ports(fmt)
+    files = convert_myhdl(
+        fixed_multiply(*(signals[n] for n in MULTIPLY_ORDER), fmt), "mul", tmp_path
+    )
+    mapped = map_xc7(files[-1], "mul", tmp_path)
+    assert mapped.dsp_registers == ({"AREG": 1, "BREG": 1, "MREG": 1, "PREG": 1},)
+    # Only the rounding is left in the fabric: one register stage of flip-flops after the DSP.
+    assert mapped.cells.get("FDRE", 0) <= fmt.width + MULTIPLY_LATENCY + 2

@@ -12,6 +12,7 @@ from __future__ import annotations
 from myhdl import Signal, always_comb, always_seq, block, intbv
 
 from rfc.lib.arith.mac import MAC_GUARD_BITS
+from rfc.lib.arith.pipeline import stall_control
 from rfc.lib.fixed import FixedFormat
 
 #: Operand (A/B), product (M), P and rounded-result registers: Yosys folds the first three into
@@ -61,11 +62,7 @@ def fixed_multiply(clk, rst, in_valid, in_ready, a, b, out_valid, out_ready, pro
             product.next = rounded
             v4.next = v3
 
-    @always_comb
-    def control():
-        advance.next = out_ready or not v4
-        in_ready.next = out_ready or not v4
-        out_valid.next = v4
+    control = stall_control(v4, out_ready, advance, in_ready, out_valid)
 
     return rounding, stages, control
 
@@ -95,11 +92,7 @@ def fixed_mac(clk, rst, in_valid, in_ready, a, b, first, out_valid, out_ready, t
     valid_out = Signal(bool(0))
     datapath = mac_pipeline(clk, rst, advance, in_valid, a, b, first, valid_out, total, fmt)
 
-    @always_comb
-    def control():
-        advance.next = out_ready or not valid_out
-        in_ready.next = out_ready or not valid_out
-        out_valid.next = valid_out
+    control = stall_control(valid_out, out_ready, advance, in_ready, out_valid)
 
     return datapath, control
 

@@ -155,3 +155,21 @@ def round_to_format(wide, narrow, fmt: FixedFormat):
             narrow.next = v
 
     return round_half_up
+
+
+@block
+def exact_multiply(clk, rst, advance, a, b, product):
+    """``a * b`` exact (`product` as wide as both operands), two advancing cycles later.
+
+    The handshake-free product for larger pipelines: a register for the product (the DSP48's
+    M) and one holding it (P); the operands' registers are the caller's.
+    """
+    full = Signal(product.val)
+
+    @always_seq(clk.posedge, reset=rst)
+    def stages():
+        if advance:
+            full.next = a * b
+            product.next = full
+
+    return stages

@@ -7,7 +7,9 @@ pipeline and nothing is lost or repeated.
 
 from __future__ import annotations
 
-from myhdl import always_comb, always_seq, block
+from itertools import pairwise
+
+from myhdl import Signal, always_comb, always_seq, block, intbv
 
 
 @block
@@ -33,3 +35,59 @@ def stage_register(clk, rst, advance, source, target):
             target.next = source
 
     return load
+
+
+@block
+def delay_line(clk, rst, advance, source, target, stages: int):
+    """`target` is `source` as it was `stages` advancing cycles ago (`stages` >= 1 registers)."""
+    chain = [Signal(source.val) for _ in range(stages - 1)]
+    taps = [source, *chain, target]
+    return [stage_register(clk, rst, advance, before, after) for before, after in pairwise(taps)]
+
+
+@block
+def result_queue(clk, rst, push, source, has_room, out_valid, out_ready, target, depth: int):
+    """A small queue at a pipeline's end, so a slow consumer does not stall it every result.
+
+    With one stall enable, a consumer that takes results late stops the whole pipeline, and
+    the gaps between messages inside it stay gaps. The queue takes a result whenever the
+    pipeline moves, and the pipeline moves while the queue has room (`has_room`, from the
+    queue's registered fill level: the consumer's `out_ready` reaches no stage). First word
+    falls through: `target` and `out_valid` show the oldest entry.
+
+    Args:
+        clk: Clock.
+        rst: Synchronous reset (a MyHDL ``ResetSignal``).
+        push: Input, store `source` on this cycle.
+        source: Input, the pipeline's result.
+        has_room: Output, at least two entries are free: the pipeline may move this cycle.
+        out_valid: Output, `target` holds the oldest result.
+        out_ready: Input, the consumer takes it on this cycle.
+        target: Output, as wide as `source`.
+        depth: Entries (at least 2; `depth - 1` are used).
+    """
+    memory = [Signal(source.val) for _ in range(depth)]
+    write, read = Signal(intbv(0, min=0, max=depth)), Signal(intbv(0, min=0, max=depth))
+    level = Signal(intbv(0, min=0, max=depth + 1))
+    last = depth - 1
+
+    @always_seq(clk.posedge, reset=rst)
+    def update():
+        taken = level != 0 and out_ready
+        if push:
+            memory[write].next = source
+            write.next = 0 if write == last else write + 1
+        if taken:
+            read.next = 0 if read == last else read + 1
+        if push and not taken:
+            level.next = level + 1
+        elif taken and not push:
+            level.next = level - 1
+
+    @always_comb
+    def outputs():
+        target.next = memory[read]
+        out_valid.next = level != 0
+        has_room.next = level < last
+
+    return update, outputs

@@ -1,8 +1,8 @@
 """Yosys' view of a block: 7-series cells, DSP48E1 register settings and cell-delay timing.
 
-`synth_xilinx -family xc7 -abc9 -flatten` maps rfc's Verilog with the 7-series cell delays that
-Yosys knows, and `sta` gives the latest arrival time: the critical path's cell delay without
-routing (Yosys 0.23 has no timing arcs for CARRY4, so carry chains count as free).
+`synth_xilinx -family xc7 -abc9 -flatten` maps rfc's Verilog; `sta` on the mapped netlist, read
+back with the 7-series cells' timing models (`cells_sim.v`'s specify blocks), gives the latest
+arrival time: the critical path's cell delay, without routing.
 """
 
 from __future__ import annotations
@@ -39,10 +39,13 @@ class Mapped:
 
 def map_xc7(verilog: Path, top: str, workdir: Path) -> Mapped:
     """Map one Verilog file with `synth_xilinx -abc9 -flatten` and run `sta` on the result."""
-    netlist = workdir / f"{top}.json"
+    netlist, mapped = workdir / f"{top}.json", workdir / f"{top}.mapped.v"
+    # `sta` on the mapped netlist read back with the cells' timing (specify) models.
     script = (
         f"read_verilog {verilog}; synth_xilinx -family xc7 -noiopad -abc9 -flatten -top {top}; "
-        f"write_json {netlist}; sta"
+        f"write_json {netlist}; write_verilog -noattr {mapped}; design -reset; "
+        f"read_verilog -lib -specify +/xilinx/cells_sim.v; read_verilog {mapped}; "
+        f"hierarchy -top {top}; flatten; sta"
     )
     yosys = shutil.which("yosys") or "yosys"
     result = subprocess.run([yosys, "-p", script], capture_output=True, text=True, check=True)

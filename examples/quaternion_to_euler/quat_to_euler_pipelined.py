@@ -61,9 +61,8 @@ def quat_to_euler_pipelined(
     overflows = [Signal(bool(0)) for _ in range(4)]
     invalids = [Signal(bool(0)) for _ in range(4)]
     qx, qy, qz, qw = (component.signal() for _ in range(4))
-    valid_in_reg, valid_q, valid_p, valid_held, valid_sum = (Signal(bool(0)) for _ in range(5))
-    bad_q, bad_rolled, bad_angles = (Signal(bool(0)) for _ in range(3))
-    bad_p, bad_held, bad_sum = (Signal(bool(0)) for _ in range(3))
+    valid_in_reg, valid_q, valid_sum = (Signal(bool(0)) for _ in range(3))
+    bad_q, bad_sum, bad_rolled, bad_angles = (Signal(bool(0)) for _ in range(4))
     received = [
         stage_register(clk, rst, advance, source, target)
         for source, target in zip((x, y, z, w, in_valid), (*raw_in, valid_in_reg), strict=True)
@@ -86,6 +85,11 @@ def quat_to_euler_pipelined(
     sum_roll_a, sum_roll_b, sum_yaw_a, sum_yaw_b, sum_sin = (
         _signed(PIPELINED.sum_width) for _ in range(5)
     )
+    # valid and out-of-domain flags beside the product, held product and sum registers
+    flags = [
+        delay_line(clk, rst, advance, source, target, 3)
+        for source, target in ((valid_q, valid_sum), (bad_q, bad_sum))
+    ]
 
     # CORDIC inputs (Q6.40) and sin(pitch) (Q6.36), rounded half up from the exact sums.
     width = CORDIC.width
@@ -194,17 +198,11 @@ def quat_to_euler_pipelined(
                 or invalids[0] or invalids[1] or invalids[2] or invalids[3]
             )  # fmt: skip
             valid_q.next = valid_in_reg
-            valid_p.next = valid_q
-            bad_p.next = bad_q
-            valid_held.next = valid_p
-            bad_held.next = bad_p
             sum_roll_a.next = pxx + pyy
             sum_roll_b.next = pwx + pyz
             sum_yaw_a.next = pyy + pzz
             sum_yaw_b.next = pwz + pxy
             sum_sin.next = pwy - pzx
-            valid_sum.next = valid_held
-            bad_sum.next = bad_held
             sin_pitch.next = ((sum_sin >> (sin_drop - 2)) + 1) >> 1
             roll_held.next = roll_angle
             yaw_held.next = yaw_angle
@@ -219,6 +217,6 @@ def quat_to_euler_pipelined(
             bad_final.next = bad_angles
 
     return (
-        received, converters, multipliers, roll_cordic, yaw_cordic, scale, sin_wait, bad_wait,
-        pitch_cordic, angle_waits, to_float, queue, rounding, results_out, stages,
+        received, converters, multipliers, flags, roll_cordic, yaw_cordic, scale, sin_wait,
+        bad_wait, pitch_cordic, angle_waits, to_float, queue, rounding, results_out, stages,
     )  # fmt: skip

@@ -7,9 +7,10 @@ Every register moves on one stall enable, while the result queue at the end has 
 consumer does not take results, the queue fills, then the whole pipeline holds and takes no new
 quaternion until a result leaves.
 
-Stages (registers), from the input handshake: components as float64, as Q2.40 (`PIPELINED`);
-products (the DSP48's M and P registers); exact sums; CORDIC inputs; roll and yaw CORDICs
-(prerotation and a stage per iteration); lengths; pitch CORDIC; angles; the result queue (float64).
+Stages (registers), from the input handshake: components as float64, as Q2.44 (`PIPELINED`);
+exact products (limb products on the DSP48s' M and P registers, then their sums in a tree);
+the five sums; roll and yaw CORDICs (prerotation and a stage per iteration, CORDIC inputs
+rounded on the way in); lengths; pitch CORDIC; angles; the result queue (float64).
 sin(pitch)·gain/2 and the roll and yaw angles wait in delay lines beside the CORDICs.
 """
 
@@ -18,7 +19,7 @@ from __future__ import annotations
 from myhdl import ConcatSignal, Signal, always_comb, always_seq, block, intbv
 from quat_to_euler import PIPELINED
 
-from rfc.lib.arith.mac_hdl import exact_multiply
+from rfc.lib.arith.mac_hdl import exact_multiply, exact_multiply_stages
 from rfc.lib.arith.pipeline import delay_line, result_queue, stage_register
 from rfc.lib.cordic.hdl import cordic_pipeline
 from rfc.lib.fixed.hdl import fixed_to_float, float_to_fixed
@@ -26,12 +27,12 @@ from rfc.lib.fixed.hdl import fixed_to_float, float_to_fixed
 CORDIC = PIPELINED.cordic
 #: Registers a CORDIC adds: the prerotation and one per iteration.
 CORDIC_STAGES = CORDIC.iterations + 1
-#: Registers from sin(pitch) (beside the CORDICs' prerotation) to its product with gain/2.
-SCALE_STAGES = 2
-#: Cycles from the input handshake until `out_valid` is high, the same for every input: the
-#: input, component, product, held product and sum registers, two CORDICs, the lengths, the
-#: angles and the result queue, less one (the handshake loads the first).
-LATENCY = 5 + 2 * CORDIC_STAGES + 3 - 1
+#: Registers of an exact product of two components (limb products, their sums).
+PRODUCT_STAGES = exact_multiply_stages(PIPELINED.component.width, PIPELINED.component.width)
+#: Cycles from the input handshake until `out_valid` is high when the consumer keeps up: the
+#: input, component, product and sum registers, two CORDICs, the lengths, the angles and the
+#: result queue, less one (the handshake loads the first).
+LATENCY = 2 + PRODUCT_STAGES + 1 + 2 * CORDIC_STAGES + 3 - 1
 #: Results the queue holds while the consumer is slow (one entry of four stays free).
 QUEUE_DEPTH = 4
 #: A quaternion every cycle while the results are taken.
@@ -72,7 +73,7 @@ def quat_to_euler_pipelined(
         for bits, raw, over, nan in zip(raw_in, fixed, overflows, invalids, strict=True)
     ]
 
-    # The nine exact products (M and P registers each) and their five sums.
+    # The nine exact products and their five sums.
     product_width = 2 * component.width
     products = [_signed(product_width) for _ in range(9)]
     pxx, pyy, pzz, pwx, pyz, pwz, pxy, pwy, pzx = products
@@ -85,9 +86,9 @@ def quat_to_euler_pipelined(
     sum_roll_a, sum_roll_b, sum_yaw_a, sum_yaw_b, sum_sin = (
         _signed(PIPELINED.sum_width) for _ in range(5)
     )
-    # valid and out-of-domain flags beside the product, held product and sum registers
+    # valid and out-of-domain flags beside the product and sum registers
     flags = [
-        delay_line(clk, rst, advance, source, target, 3)
+        delay_line(clk, rst, advance, source, target, PRODUCT_STAGES + 1)
         for source, target in ((valid_q, valid_sum), (bad_q, bad_sum))
     ]
 
@@ -113,7 +114,7 @@ def quat_to_euler_pipelined(
     half_gain = component.signal()
     scale = exact_multiply(clk, rst, advance, sin_pitch, half_gain, scaled_product)
     sin_wait = delay_line(
-        clk, rst, advance, scaled_sin, scaled_sin_late, CORDIC_STAGES - 1 - SCALE_STAGES
+        clk, rst, advance, scaled_sin, scaled_sin_late, CORDIC_STAGES - 1 - PRODUCT_STAGES
     )
     bad_wait = delay_line(clk, rst, advance, bad_sum, bad_rolled, CORDIC_STAGES)
 

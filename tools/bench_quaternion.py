@@ -14,6 +14,7 @@ Usage: .venv/bin/python tools/bench_quaternion.py [--messages N] [--variants pip
 from __future__ import annotations
 
 import argparse
+import os
 import struct
 import subprocess
 import sys
@@ -156,12 +157,16 @@ def quaternions(count: int) -> np.ndarray:
 
 def measure(variant: str, count: int, work: Path) -> None:
     build = work / variant
-    subprocess.run(
+    built = subprocess.run(
         [sys.executable, "-m", "rfc", "build", str(EXAMPLE / SPECS[variant]), "-o", str(build)],
-        check=True,
         capture_output=True,
+        text=True,
         cwd=ROOT,
+        # converting the pipelined core takes tens of seconds, more on a loaded machine
+        env={"RFC_USER_CODE_TIMEOUT": "600", **os.environ},
     )
+    if built.returncode != 0:
+        raise SystemExit(f"rfc build {SPECS[variant]} failed:\n{built.stderr}")
     files = [build / "hw" / name for name in (build / "hw" / "files.txt").read_text().split()]
     top = files[-1].stem
     types = message_types("ros2")

@@ -20,7 +20,7 @@ from myhdl import ConcatSignal, Signal, always_comb, always_seq, block, intbv
 from quat_to_euler import PIPELINED
 
 from rfc.lib.arith.mac_hdl import exact_multiply, exact_multiply_stages
-from rfc.lib.arith.pipeline import delay_line, result_queue, stage_register
+from rfc.lib.arith.pipeline import data_delay, delay_line, result_queue, stage_register
 from rfc.lib.cordic.hdl import cordic_pipeline
 from rfc.lib.fixed.hdl import fixed_to_float, float_to_fixed
 
@@ -113,8 +113,8 @@ def quat_to_euler_pipelined(
     scaled_sin, scaled_sin_late = _signed(width), _signed(width)
     half_gain = component.signal()
     scale = exact_multiply(clk, rst, advance, sin_pitch, half_gain, scaled_product)
-    sin_wait = delay_line(
-        clk, rst, advance, scaled_sin, scaled_sin_late, CORDIC_STAGES - 1 - PRODUCT_STAGES
+    sin_wait = data_delay(
+        clk, advance, scaled_sin, scaled_sin_late, CORDIC_STAGES - 1 - PRODUCT_STAGES
     )
     bad_wait = delay_line(clk, rst, advance, bad_sum, bad_rolled, CORDIC_STAGES)
 
@@ -130,10 +130,10 @@ def quat_to_euler_pipelined(
     )  # fmt: skip
     roll_late, yaw_late = _signed(CORDIC.angle_width), _signed(CORDIC.angle_width)
     angle_waits = [
-        delay_line(clk, rst, advance, source, target, CORDIC_STAGES)
-        for source, target in ((roll_held, roll_late), (yaw_held, yaw_late),
-                               (bad_lengths, bad_angles))
-    ]  # fmt: skip
+        data_delay(clk, advance, roll_held, roll_late, CORDIC_STAGES),
+        data_delay(clk, advance, yaw_held, yaw_late, CORDIC_STAGES),
+        delay_line(clk, rst, advance, bad_lengths, bad_angles, CORDIC_STAGES),
+    ]
 
     # Angles registered, then float64.
     angle_format = PIPELINED.angle

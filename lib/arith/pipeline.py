@@ -39,10 +39,38 @@ def stage_register(clk, rst, advance, source, target):
 
 @block
 def delay_line(clk, rst, advance, source, target, stages: int):
-    """`target` is `source` as it was `stages` advancing cycles ago (`stages` >= 1 registers)."""
+    """`target` is `source` as it was `stages` advancing cycles ago (`stages` >= 1 registers).
+
+    Each register is reset: use it for valid bits and flags. `data_delay` is the cheaper form
+    for values whose validity travels beside them.
+    """
     chain = [Signal(source.val) for _ in range(stages - 1)]
     taps = [source, *chain, target]
     return [stage_register(clk, rst, advance, before, after) for before, after in pairwise(taps)]
+
+
+@block
+def data_delay(clk, advance, source, target, stages: int):
+    """`target` is `source` as it was `stages` advancing cycles ago, in one shift register.
+
+    Not reset (a valid bit in a `delay_line` beside it says what the values mean), so synthesis
+    may put it in shift-register LUTs, and it is one process however long.
+    """
+    chain = [Signal(source.val) for _ in range(stages)]
+    last = stages - 1
+
+    @always_seq(clk.posedge, reset=None)
+    def shift():
+        if advance:
+            chain[0].next = source
+            for i in range(1, stages):
+                chain[i].next = chain[i - 1]
+
+    @always_comb
+    def output():
+        target.next = chain[last]
+
+    return shift, output
 
 
 @block

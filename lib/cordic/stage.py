@@ -10,9 +10,7 @@ stages need to know about the input: a negation, a level vector) along unchanged
 
 from __future__ import annotations
 
-from myhdl import Signal, always_comb, block, intbv
-
-from rfc.lib.arith.pipeline import stage_register
+from myhdl import Signal, always_comb, always_seq, block, intbv
 
 
 @block
@@ -73,8 +71,17 @@ def micro_rotation(clk, rst, advance, shift: int, angle_step: int, vectoring: bo
         vectoring, shift, (angle_step,), 0, (x_in, y_in, z_in), (x_next, y_next, z_next)
     )
 
-    registers = [
-        stage_register(clk, rst, advance, source, target)
-        for source, target in zip((valid_in, tag_in, x_next, y_next, z_next), after, strict=True)
-    ]
-    return step, registers
+    valid_out, tag_out, x_out, y_out, z_out = after
+
+    # One process for the stage's registers (a process per register would triple the
+    # generators MyHDL converts in a long pipeline).
+    @always_seq(clk.posedge, reset=rst)
+    def hold():
+        if advance:
+            valid_out.next = valid_in
+            tag_out.next = tag_in
+            x_out.next = x_next
+            y_out.next = y_next
+            z_out.next = z_next
+
+    return step, hold

@@ -2,8 +2,10 @@
 
 For each block: latency and initiation interval measured in MyHDL simulation (no idle cycles,
 no backpressure), LUT/FF/DSP from Yosys (`synth_xilinx -family xc7`, through GHDL's synthesis
-of the converted VHDL), and accuracy of the bit-exact model (which the tests prove equal to the
-hardware) against NumPy float64 over many random inputs.
+of the converted VHDL), the critical path's cell delay from Yosys' `sta` after
+`synth_xilinx -abc9 -flatten` of the converted Verilog (no routing), and accuracy of the
+bit-exact model (which the tests prove equal to the hardware) against NumPy float64 over many
+random inputs.
 
 Usage: .venv/bin/python tools/bench_arith.py [--samples N] [--states N] [--no-synth]
 """
@@ -35,13 +37,18 @@ from rfc.lib.arith.mac import multiply, multiply_accumulate  # noqa: E402
 from rfc.lib.arith.mac_hdl import fixed_mac, fixed_multiply  # noqa: E402
 from rfc.lib.arith.sincos_hdl import sincos as sincos_block  # noqa: E402
 from rfc.lib.arith.transform import transform_multiply, transform_program  # noqa: E402
+from rfc.lib.cordic import CordicConfig  # noqa: E402
+from rfc.lib.cordic.hdl import cordic_vectoring  # noqa: E402
 from rfc.lib.fixed import FixedFormat  # noqa: E402
 from rfc.toolchain import convert_myhdl, estimate_resources, start_new_design  # noqa: E402
 from tests.examples.franka_fk.example import load, states, to_bits, to_float  # noqa: E402
 from tests.lib.arith.flat import flat_ports, flat_top  # noqa: E402
+from tests.lib.arith.synth import map_xc7  # noqa: E402
 from tests.support.myhdl_stream import simulate_stream  # noqa: E402
 
 WORD = FixedFormat(50, 44)
+#: The pipelined quaternion core's CORDIC (examples/quaternion_to_euler).
+VECTORING = CordicConfig(width=50, iterations=38, angle_frac=46)
 DSP_WORD = FixedFormat(18, 16)  # fits one DSP48E1 multiplier (25 x 18)
 
 
@@ -120,6 +127,20 @@ def cases() -> list[Case]:
             mse=word(),
         )
 
+    def cordic_ports() -> dict[str, Any]:
+        def signed(bits: int) -> Signal:
+            return Signal(intbv(0, min=-(1 << (bits - 1)), max=1 << (bits - 1)))
+
+        return handshake(
+            x=signed(VECTORING.width),
+            y=signed(VECTORING.width),
+            angle=signed(VECTORING.angle_width),
+            magnitude=Signal(intbv(0)[VECTORING.magnitude_width :]),
+        )
+
+    cordic_order = ("clk", "rst", "in_valid", "in_ready", "x", "y", "out_valid", "out_ready",
+                    "angle", "magnitude")  # fmt: skip
+    vectors = {"x": [5, -6, 7, 0, 9, 1], "y": [1, 2, -3, 0, 4, -8]}
     angles = {"angle": [1, -2, 3, 4, 5, 6]}
     pairs = {"a": [1, 2, 3, 4, 5, 6], "b": [6, 5, 4, 3, 2, 1]}
     transform_in = {f"{g}{i}": [i + 1] * 3 for g in "ab" for i in range(12)}
@@ -138,6 +159,10 @@ def cases() -> list[Case]:
              angles, "cos"),
         Case("sincos pipelined (Q4.44)", sincos_block, sc_order, sc_ports, (config, True),
              angles, "cos"),
+        Case("CORDIC vectoring iterative (50 bits, 38 iterations)", cordic_vectoring,
+             cordic_order, cordic_ports, (VECTORING, False), vectors, "angle"),
+        Case("CORDIC vectoring pipelined (50 bits, 38 stages)", cordic_vectoring, cordic_order,
+             cordic_ports, (VECTORING, True), vectors, "angle"),
         Case("multiply Q2.16", fixed_multiply, mul_order, mul_ports(DSP_WORD), (DSP_WORD,),
              pairs, "product"),
         Case("multiply Q6.44", fixed_multiply, mul_order, mul_ports(WORD), (WORD,), pairs,
@@ -174,11 +199,15 @@ def measure(case: Case, work: Path, synth: bool) -> str:
         ports = flat_ports(case.ports())
         name = "top_" + "_".join("".join(c for c in w if c.isalnum()) for w in case.name.split())
         name = "_".join(part for part in name.lower().split("_") if part)
-        files = convert_myhdl(top(*(ports[n] for n in names)), name, work / name, verilog=False)
+        files = convert_myhdl(top(*(ports[n] for n in names)), name, work / name)
         start = time.perf_counter()
-        cells = estimate_resources(files, name)
+        cells = estimate_resources(files[:-1], name)
+        timing = map_xc7(files[-1], name, work / name)
         seconds = time.perf_counter() - start
-        row += f" {cells.lut} | {cells.ff} | {cells.dsp} | {cells.lutram} | ({seconds:.0f} s)"
+        row += (
+            f" {cells.lut} | {cells.ff} | {cells.dsp} | {cells.lutram} |"
+            f" {timing.arrival_ps / 1000:.2f} ns ({timing.fmax_mhz:.0f} MHz) | ({seconds:.0f} s)"
+        )
     return row
 
 
@@ -240,7 +269,7 @@ def main() -> None:
     args = parser.parse_args()
     header = "| block | latency | II |"
     if not args.no_synth:
-        header += " LUT | FF | DSP48E1 | LUTRAM | |"
+        header += " LUT | FF | DSP48E1 | LUTRAM | cell delay (Fmax) | |"
     print(header)
     with tempfile.TemporaryDirectory(prefix="rfc-bench-arith-") as scratch:
         for case in cases():

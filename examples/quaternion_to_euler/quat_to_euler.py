@@ -19,6 +19,8 @@ integer steps in Python, bit for bit) and `numpy_reference` (the double-precisio
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 from myhdl import Signal, always_comb, always_seq, block, enum, intbv
 from numpy.typing import ArrayLike, NDArray
@@ -29,23 +31,70 @@ from rfc.lib.fixed import QUIET_NAN, FixedFormat, fixed_to_float, float_to_fixed
 from rfc.lib.fixed.hdl import fixed_to_float as fixed_to_float_block
 from rfc.lib.fixed.hdl import float_to_fixed as float_to_fixed_block
 
-#: Quaternion components: Q2.53, [-2, 2). Unit quaternions lie in [-1, 1], and their largest
-#: component, at least 1/2, converts exactly.
-COMPONENT = FixedFormat(55, 53)
-#: Fraction bits of the exact products and their sums (values in [-16, 16): 111 bits).
-PRODUCT_FRAC = 2 * COMPONENT.frac_bits
-SUM_WIDTH = PRODUCT_FRAC + 5
-#: The CORDICs take Q6.58 inputs (the atan2 arguments lie in [-15, 16] for any component in
-#: range) and give Q3.60 radians; 40 iterations leave about 2e-12 rad.
-CORDIC = CordicConfig(width=64, iterations=40, angle_frac=60)
-CORDIC_FRAC = 58
-ANGLE = FixedFormat(CORDIC.angle_width, CORDIC.angle_frac)
+
+@dataclass(frozen=True)
+class Precision:
+    """The number formats of one implementation; `reference` follows them bit for bit.
+
+    Attributes:
+        component: The quaternion's components, Q2.f: unit quaternions lie in [-1, 1], and
+            their largest component, at least 1/2, converts exactly.
+        cordic: The CORDICs: inputs Q6.`cordic_frac` (the atan2 arguments lie in [-15, 16]
+            for any component in range), angles Q3.`angle_frac` radians.
+        cordic_frac: Fraction bits of the CORDIC inputs (``cordic.width - 6``).
+    """
+
+    component: FixedFormat
+    cordic: CordicConfig
+    cordic_frac: int
+
+    @property
+    def product_frac(self) -> int:
+        """Fraction bits of the exact products and their sums."""
+        return 2 * self.component.frac_bits
+
+    @property
+    def sum_width(self) -> int:
+        """Bits of the exact sums (values in [-16, 16))."""
+        return self.product_frac + 5
+
+    @property
+    def sin_frac(self) -> int:
+        """sin(pitch) is rounded to Q6.`sin_frac`, a word as wide as a component."""
+        return self.component.width - 6
+
+    @property
+    def half_gain_frac(self) -> int:
+        """gain/2 is Q1.`half_gain_frac`, a word as wide as a component."""
+        return self.component.width - 1
+
+    @property
+    def half_gain(self) -> int:
+        """The pitch CORDIC's y input must carry the gain its x input (a magnitude) has."""
+        return self.cordic.gain(self.half_gain_frac - 1)
+
+    @property
+    def angle(self) -> FixedFormat:
+        """The angles out of the CORDICs, before float64."""
+        return FixedFormat(self.cordic.angle_width, self.cordic.angle_frac)
+
+
+#: The small iterative core: Q2.53 components; 40 iterations leave about 2e-12 rad.
+ITERATIVE = Precision(FixedFormat(55, 53), CordicConfig(width=64, iterations=40, angle_frac=60), 58)
+#: The pipelined core: Q2.40 components, 38 iterations; within 2e-10 rad of NumPy (docs).
+PIPELINED = Precision(FixedFormat(46, 44), CordicConfig(width=50, iterations=38, angle_frac=46), 44)
+COMPONENT = ITERATIVE.component
+PRODUCT_FRAC = ITERATIVE.product_frac
+SUM_WIDTH = ITERATIVE.sum_width
+CORDIC = ITERATIVE.cordic
+CORDIC_FRAC = ITERATIVE.cordic_frac
+ANGLE = ITERATIVE.angle
 #: The pitch CORDIC's x input is the mean length, gain·cos(pitch), halved to fit its width; its
 #: y input must carry the same gain: sin(pitch) (Q6.49) times gain/2 (Q1.54) in the shared
 #: multiplier.
-SIN_FRAC = COMPONENT.width - 6
-HALF_GAIN_FRAC = COMPONENT.width - 1
-HALF_GAIN = CORDIC.gain(HALF_GAIN_FRAC - 1)
+SIN_FRAC = ITERATIVE.sin_frac
+HALF_GAIN_FRAC = ITERATIVE.half_gain_frac
+HALF_GAIN = ITERATIVE.half_gain
 
 #: Products issued one per cycle, by their operands: components x, y, z, w, then sin(pitch) and
 #: gain/2. wy and zx come first, so that sin(pitch) is summed when the tenth product, its
@@ -69,28 +118,36 @@ def _round(value: int, drop: int) -> int:
     return ((value >> (drop - 1)) + 1) >> 1
 
 
-def reference(x: int, y: int, z: int, w: int) -> tuple[int, int, int]:
-    """The core's results, bit for bit, from float64 bit patterns: (roll, pitch, yaw) patterns.
+def reference(
+    x: int, y: int, z: int, w: int, precision: Precision = ITERATIVE
+) -> tuple[int, int, int]:
+    """A core's results, bit for bit, from float64 bit patterns: (roll, pitch, yaw) patterns.
 
+    `precision` names the core: `ITERATIVE` (`quat_to_euler`) or `PIPELINED`
+    (`quat_to_euler_pipelined.quat_to_euler_pipelined`); both take the same integer steps.
     A component that is NaN, infinite or outside [-2, 2) makes all three results a quiet NaN.
     """
-    converted = [float_to_fixed(bits, COMPONENT) for bits in (x, y, z, w)]
+    converted = [float_to_fixed(bits, precision.component) for bits in (x, y, z, w)]
     if any(c.overflow or c.invalid for c in converted):
         return QUIET_NAN, QUIET_NAN, QUIET_NAN
     qx, qy, qz, qw = (c.raw for c in converted)
+    cordic, product_frac = precision.cordic, precision.product_frac
     sin_half = qw * qy - qz * qx
-    drop = PRODUCT_FRAC - CORDIC_FRAC
-    one = 1 << CORDIC_FRAC
+    drop = product_frac - precision.cordic_frac
+    one = 1 << precision.cordic_frac
     roll = vectoring(
-        one + _round(-2 * (qx * qx + qy * qy), drop), _round(2 * (qw * qx + qy * qz), drop), CORDIC
+        one + _round(-2 * (qx * qx + qy * qy), drop), _round(2 * (qw * qx + qy * qz), drop), cordic
     )
     yaw = vectoring(
-        one + _round(-2 * (qy * qy + qz * qz), drop), _round(2 * (qw * qz + qx * qy), drop), CORDIC
+        one + _round(-2 * (qy * qy + qz * qz), drop), _round(2 * (qw * qz + qx * qy), drop), cordic
     )
-    sin_pitch = _round(2 * sin_half, PRODUCT_FRAC - SIN_FRAC)
-    scaled_sin = _round(sin_pitch * HALF_GAIN, SIN_FRAC + HALF_GAIN_FRAC - CORDIC_FRAC)
-    pitch = vectoring((roll.magnitude + yaw.magnitude) >> 2, scaled_sin, CORDIC)
-    return tuple(fixed_to_float(angle.angle, ANGLE) for angle in (roll, pitch, yaw))
+    sin_pitch = _round(2 * sin_half, product_frac - precision.sin_frac)
+    scaled_sin = _round(
+        sin_pitch * precision.half_gain,
+        precision.sin_frac + precision.half_gain_frac - precision.cordic_frac,
+    )
+    pitch = vectoring((roll.magnitude + yaw.magnitude) >> 2, scaled_sin, cordic)
+    return tuple(fixed_to_float(angle.angle, precision.angle) for angle in (roll, pitch, yaw))
 
 
 def numpy_reference(quaternions: ArrayLike) -> NDArray[np.float64]:

@@ -7,8 +7,9 @@ holds its result until taken; the bits are those of `rfc.lib.fixed.ieee754`.
 
 from __future__ import annotations
 
-from myhdl import Signal, always_comb, always_seq, block, intbv
+from myhdl import Signal, always_seq, block, intbv
 
+from rfc.lib.arith.pipeline import stall_control
 from rfc.lib.fixed.hdl import fixed_to_float, float_to_fixed
 
 #: Input and output registers.
@@ -53,11 +54,7 @@ def float_to_fixed_pipelined(
             invalid.next = converted_invalid
             v2.next = v1
 
-    @always_comb
-    def control():
-        advance.next = out_ready or not v2
-        in_ready.next = out_ready or not v2
-        out_valid.next = v2
+    control = stall_control(v2, out_ready, advance, in_ready, out_valid)
 
     return convert, stages, control
 
@@ -90,10 +87,6 @@ def fixed_to_float_pipelined(clk, rst, in_valid, in_ready, raw, out_valid, out_r
             bits.next = converted
             v2.next = v1
 
-    @always_comb
-    def control():
-        advance.next = out_ready or not v2
-        in_ready.next = out_ready or not v2
-        out_valid.next = v2
+    control = stall_control(v2, out_ready, advance, in_ready, out_valid)
 
     return convert, stages, control

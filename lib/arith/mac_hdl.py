@@ -1,10 +1,10 @@
 """MyHDL fixed-point multiply and multiply-accumulate, pipelined for the DSP48.
 
 The stages are the DSP48E1's own registers, so synthesis can fold them into the slice: operands
-(A/B registers), product (M register), sum (P register); a fabric register then rounds half up
-and saturates to the format. Both blocks take a pair every cycle (II = 1) and hold results
-until taken (the whole pipeline stalls). Latencies, in cycles from the input handshake to
-`out_valid`: `MULTIPLY_LATENCY`, `MAC_LATENCY`. Bit-exact with `rfc.lib.arith.mac`.
+(A/B registers), product (M register), product or sum (P register); a fabric register then
+rounds half up and saturates to the format. Both blocks take a pair every cycle (II = 1) and
+hold results until taken (the whole pipeline stalls). Latencies, in cycles from the input
+handshake to `out_valid`: `MULTIPLY_LATENCY`, `MAC_LATENCY`. Bit-exact with `rfc.lib.arith.mac`.
 """
 
 from __future__ import annotations
@@ -12,10 +12,12 @@ from __future__ import annotations
 from myhdl import Signal, always_comb, always_seq, block, intbv
 
 from rfc.lib.arith.mac import MAC_GUARD_BITS
+from rfc.lib.arith.pipeline import stage_register, stall_control
 from rfc.lib.fixed import FixedFormat
 
-#: Operand, product and result registers.
-MULTIPLY_LATENCY = 2
+#: Operand (A/B), product (M), P and rounded-result registers: Yosys folds the first three into
+#: a DSP48E1 (AREG, BREG, MREG, PREG all 1) when the operands fit one slice (25 x 18 signed).
+MULTIPLY_LATENCY = 3
 #: Operand, product, sum and rounded-result registers.
 MAC_LATENCY = 3
 
@@ -41,12 +43,11 @@ def fixed_multiply(clk, rst, in_valid, in_ready, a, b, out_valid, out_ready, pro
         fmt: The operands' and result's format.
     """
     a1, b1 = fmt.signal(), fmt.signal()
-    full = _signed(2 * fmt.width)
-    valid = [Signal(bool(0)) for _ in range(3)]
-    v1, v2, v3 = valid
+    full, held = _signed(2 * fmt.width), _signed(2 * fmt.width)
+    v1, v2, v3, v4 = (Signal(bool(0)) for _ in range(4))
     advance = Signal(bool(0))
     rounded = fmt.signal()
-    rounding = round_to_format(full, rounded, fmt)
+    rounding = round_to_format(held, rounded, fmt)
 
     @always_seq(clk.posedge, reset=rst)
     def stages():
@@ -56,14 +57,12 @@ def fixed_multiply(clk, rst, in_valid, in_ready, a, b, out_valid, out_ready, pro
             v1.next = in_valid
             full.next = a1 * b1
             v2.next = v1
-            product.next = rounded
+            held.next = full
             v3.next = v2
+            product.next = rounded
+            v4.next = v3
 
-    @always_comb
-    def control():
-        advance.next = out_ready or not v3
-        in_ready.next = out_ready or not v3
-        out_valid.next = v3
+    control = stall_control(v4, out_ready, advance, in_ready, out_valid)
 
     return rounding, stages, control
 
@@ -93,11 +92,7 @@ def fixed_mac(clk, rst, in_valid, in_ready, a, b, first, out_valid, out_ready, t
     valid_out = Signal(bool(0))
     datapath = mac_pipeline(clk, rst, advance, in_valid, a, b, first, valid_out, total, fmt)
 
-    @always_comb
-    def control():
-        advance.next = out_ready or not valid_out
-        in_ready.next = out_ready or not valid_out
-        out_valid.next = valid_out
+    control = stall_control(valid_out, out_ready, advance, in_ready, out_valid)
 
     return datapath, control
 
@@ -160,3 +155,108 @@ def round_to_format(wide, narrow, fmt: FixedFormat):
             narrow.next = v
 
     return round_half_up
+
+
+#: Operand limbs that fit one DSP48E1 multiplier (25 x 18 signed): unsigned low limbs of 24 and
+#: 17 bits, the top limb signed.
+_A_LIMB, _B_LIMB = 24, 17
+
+
+def _limbs(width: int, size: int) -> list[tuple[int, int]]:
+    """(low bit, bits) of each limb of a signed `width`-bit operand; the last one is signed."""
+    count = max(1, -(-(width - 1) // size))
+    return [(size * i, size if i < count - 1 else width - size * i) for i in range(count)]
+
+
+def exact_multiply_stages(a_width: int, b_width: int) -> int:
+    """Advancing cycles `exact_multiply` takes for operands of these widths."""
+    terms = len(_limbs(a_width, _A_LIMB)) * len(_limbs(b_width, _B_LIMB))
+    return 2 + (terms - 1).bit_length()
+
+
+@block
+def exact_multiply(clk, rst, advance, a, b, product):
+    """``a * b`` exact (`product` as wide as both operands), `exact_multiply_stages` later.
+
+    The handshake-free product for larger pipelines. Operands wider than a DSP48E1 are cut into
+    limbs that fit one (the caller's operand registers are its A/B registers); each limb
+    product has its M and P register, and the shifted limb products are summed in a tree of
+    registered two-input adders, so no path crosses a DSP and a wide adder at once.
+    """
+    a_limbs = [
+        _signed(bits + (0 if low + bits == len(a) else 1)) for low, bits in _limbs(len(a), _A_LIMB)
+    ]
+    b_limbs = [
+        _signed(bits + (0 if low + bits == len(b) else 1)) for low, bits in _limbs(len(b), _B_LIMB)
+    ]
+    cuts = [
+        limb_cut(a, limb, low, bits)
+        for (low, bits), limb in zip(_limbs(len(a), _A_LIMB), a_limbs, strict=True)
+    ]
+    cuts += [
+        limb_cut(b, limb, low, bits)
+        for (low, bits), limb in zip(_limbs(len(b), _B_LIMB), b_limbs, strict=True)
+    ]
+    terms, parts = [], []
+    for (a_low, _), x in zip(_limbs(len(a), _A_LIMB), a_limbs, strict=True):
+        for (b_low, _), y in zip(_limbs(len(b), _B_LIMB), b_limbs, strict=True):
+            single = len(a_limbs) == len(b_limbs) == 1
+            held = product if single else _signed(len(x) + len(y))
+            parts.append(limb_product(clk, rst, advance, x, y, held))
+            terms.append((held, a_low + b_low))
+    while len(terms) > 1:
+        level = []
+        for k in range(0, len(terms) - 1, 2):
+            (x, x_shift), (y, y_shift) = sorted(terms[k : k + 2], key=lambda t: t[1])
+            wide = max(len(x), len(y) + y_shift - x_shift) + 1
+            total = product if len(terms) == 2 else _signed(wide)
+            parts.append(shifted_add(clk, rst, advance, x, y, y_shift - x_shift, total))
+            level.append((total, x_shift))
+        if len(terms) % 2:
+            late = Signal(terms[-1][0].val)
+            parts.append(stage_register(clk, rst, advance, terms[-1][0], late))
+            level.append((late, terms[-1][1]))
+        terms = level
+    return cuts, parts
+
+
+@block
+def limb_cut(operand, limb, low: int, bits: int):
+    """One limb of a signed operand: the top one signed, the others unsigned (comb)."""
+    top = low + bits == len(operand)
+
+    @always_comb
+    def signed_top():
+        limb.next = operand >> low
+
+    @always_comb
+    def unsigned_low():
+        limb.next = operand[low + bits : low]
+
+    return signed_top if top else unsigned_low
+
+
+@block
+def limb_product(clk, rst, advance, x, y, held):
+    """A product that fits one DSP48E1, through its M and P registers."""
+    full = Signal(held.val)
+
+    @always_seq(clk.posedge, reset=rst)
+    def stages():
+        if advance:
+            full.next = x * y
+            held.next = full
+
+    return stages
+
+
+@block
+def shifted_add(clk, rst, advance, x, y, shift: int, total):
+    """``x + (y << shift)``, registered."""
+
+    @always_seq(clk.posedge, reset=rst)
+    def add():
+        if advance:
+            total.next = x + (y << shift)
+
+    return add

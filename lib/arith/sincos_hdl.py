@@ -3,16 +3,18 @@
 Both have the same ports, the same latency (`SinCosConfig.latency` cycles from the input
 handshake to `out_valid`) and the bits of `rfc.lib.arith.sincos.sincos`. The iterative block
 takes one input at a time (initiation interval latency + 2: three adders, two barrel shifters);
-the pipelined one takes an input every cycle (three adders per iteration). Outputs stay put
-while `out_valid` is high and `out_ready` low. Wide constants reach VHDL as ROM contents
-(VHDL integers stop at 32 bits).
+the pipelined one takes an input every cycle (three adders per iteration, the stages of
+`rfc.lib.cordic.stage`). Outputs stay put while `out_valid` is high and `out_ready` low. Wide
+constants reach VHDL as ROM contents (VHDL integers stop at 32 bits).
 """
 
 from __future__ import annotations
 
 from myhdl import Signal, always_comb, always_seq, block, intbv
 
+from rfc.lib.arith.pipeline import stall_control
 from rfc.lib.arith.sincos import SinCosConfig
+from rfc.lib.cordic.stage import micro_rotation, rotation
 
 
 def _signed(bits: int, value: int = 0) -> Signal:
@@ -70,28 +72,20 @@ def sincos_iterative(clk, rst, in_valid, in_ready, angle, out_valid, out_ready, 
     flip = Signal(bool(0))
     step = Signal(intbv(steps, min=0, max=steps + 1))
     full = Signal(bool(0))
-    step_angle = _signed(config.z_width)
     z_start = _signed(config.z_width)
     flip_start = Signal(bool(0))
     reduce = sincos_reduction(angle, z_start, flip_start, config)
     round_cos = sincos_rounding(xs, flip, cos, config)
     round_sin = sincos_rounding(ys, flip, sin, config)
-
-    @always_comb
-    def lookup():
-        step_angle.next = rom[step]
+    x_next, y_next, z_next = Signal(xs.val), Signal(ys.val), Signal(zs.val)
+    rotate = rotation(False, step, rom, step, (xs, ys, zs), (x_next, y_next, z_next))
 
     @always_seq(clk.posedge, reset=rst)
     def iterate():
         if step != steps:
-            if zs < 0:
-                xs.next = xs + (ys >> step)
-                ys.next = ys - (xs >> step)
-                zs.next = zs + step_angle
-            else:
-                xs.next = xs - (ys >> step)
-                ys.next = ys + (xs >> step)
-                zs.next = zs - step_angle
+            xs.next = x_next
+            ys.next = y_next
+            zs.next = z_next
             if step == steps - 1:
                 full.next = True
             step.next = step + 1
@@ -110,7 +104,7 @@ def sincos_iterative(clk, rst, in_valid, in_ready, angle, out_valid, out_ready, 
         in_ready.next = step == steps and not full
         out_valid.next = full
 
-    return reduce, round_cos, round_sin, lookup, iterate, outputs
+    return reduce, round_cos, round_sin, rotate, iterate, outputs
 
 
 @block
@@ -144,67 +138,21 @@ def sincos_pipelined(clk, rst, in_valid, in_ready, angle, out_valid, out_ready, 
             valid_first.next = in_valid
 
     stages = [
-        sincos_stage(
+        micro_rotation(
             clk,
             rst,
             advance,
             i,
             step,
+            False,
             (valid[i], flips[i], xs[i], ys[i], zs[i]),
-            (valid[i + 1], flips[i + 1], xs[i + 1], ys[i + 1], zs[i + 1] if i + 1 < last else None),
+            (valid[i + 1], flips[i + 1], xs[i + 1], ys[i + 1], zs[i + 1]),
         )
         for i, step in enumerate(config.atan_table)
     ]
 
-    @always_comb
-    def outputs():
-        advance.next = out_ready or not valid_last
-        in_ready.next = out_ready or not valid_last
-        out_valid.next = valid_last
-
-    return reduce, round_cos, round_sin, load, stages, outputs
-
-
-@block
-def sincos_stage(clk, rst, advance, shift, step, before, after):
-    """One micro-rotation by ±atan(2**-shift), registered when the pipeline advances.
-
-    The last stage has no `z` output (`after` holds None there): nothing reads it.
-    """
-    valid_in, flip_in, x_in, y_in, z_in = before
-    valid_out, flip_out, x_out, y_out, z_out = after
-    rom = (step,)
-    width = len(z_in)
-
-    @always_seq(clk.posedge, reset=rst)
-    def rotate():
-        if advance:
-            turn = intbv(0, min=-(1 << (width - 1)), max=1 << (width - 1))
-            turn[:] = rom[0]
-            valid_out.next = valid_in
-            flip_out.next = flip_in
-            if z_in < 0:
-                x_out.next = x_in + (y_in >> shift)
-                y_out.next = y_in - (x_in >> shift)
-                z_out.next = z_in + turn
-            else:
-                x_out.next = x_in - (y_in >> shift)
-                y_out.next = y_in + (x_in >> shift)
-                z_out.next = z_in - turn
-
-    @always_seq(clk.posedge, reset=rst)
-    def rotate_last():
-        if advance:
-            valid_out.next = valid_in
-            flip_out.next = flip_in
-            if z_in < 0:
-                x_out.next = x_in + (y_in >> shift)
-                y_out.next = y_in - (x_in >> shift)
-            else:
-                x_out.next = x_in - (y_in >> shift)
-                y_out.next = y_in + (x_in >> shift)
-
-    return rotate_last if z_out is None else rotate
+    control = stall_control(valid_last, out_ready, advance, in_ready, out_valid)
+    return reduce, round_cos, round_sin, load, stages, control
 
 
 @block

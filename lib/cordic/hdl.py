@@ -4,7 +4,8 @@ Both have the same ports, the same latency (`CordicConfig.latency` cycles from t
 handshake to `out_valid`) and the bits of `rfc.lib.cordic.model.vectoring`. The iterative block
 takes one input at a time (initiation interval latency + 2, about four adders and two barrel
 shifters of area); the pipelined one takes an input every cycle (one stage of three adders per
-iteration). Outputs stay put while `out_valid` is high and `out_ready` low.
+iteration, the stages of `rfc.lib.cordic.stage`); `cordic_pipeline` is its datapath alone, for
+larger pipelines. Outputs stay put while `out_valid` is high and `out_ready` low.
 
 Wide constants reach VHDL only as ROM contents: MyHDL writes integers in expressions as VHDL
 integers, which stop at 32 bits.
@@ -14,7 +15,9 @@ from __future__ import annotations
 
 from myhdl import Signal, always_comb, always_seq, block, intbv
 
+from rfc.lib.arith.pipeline import stall_control
 from rfc.lib.cordic.config import CordicConfig
+from rfc.lib.cordic.stage import micro_rotation, rotation
 
 
 def _signed(bits: int, value: int = 0) -> Signal:
@@ -81,29 +84,20 @@ def cordic_iterative(
     step = Signal(intbv(iterations, min=0, max=iterations + 1))
     full = Signal(bool(0))
     level = Signal(bool(0))
-    step_angle = _signed(config.angle_width)
     x_turned, y_turned = _signed(internal), _signed(internal)
     start_angle = _signed(config.angle_width)
     y_zero = Signal(bool(0))
     turn = cordic_prerotation(x, y, x_turned, y_turned, start_angle, y_zero, config)
-
-    @always_comb
-    def lookup():
-        step_angle.next = rom[step]
+    x_next, y_next, z_next = Signal(xs.val), Signal(ys.val), Signal(zs.val)
+    rotate = rotation(True, step, rom, step, (xs, ys, zs), (x_next, y_next, z_next))
 
     @always_seq(clk.posedge, reset=rst)
     def iterate():
         if step != iterations:
-            if ys >= 0:
-                xs.next = xs + (ys >> step)
-                ys.next = ys - (xs >> step)
-                if not level:
-                    zs.next = zs + step_angle
-            else:
-                xs.next = xs - (ys >> step)
-                ys.next = ys + (xs >> step)
-                if not level:
-                    zs.next = zs - step_angle
+            xs.next = x_next
+            ys.next = y_next
+            if not level:
+                zs.next = z_next
             if step == iterations - 1:
                 full.next = True
             step.next = step + 1
@@ -124,7 +118,7 @@ def cordic_iterative(
         magnitude.next = xs >> guard
         angle.next = zs
 
-    return turn, lookup, iterate, outputs
+    return turn, rotate, iterate, outputs
 
 
 @block
@@ -132,23 +126,44 @@ def cordic_pipelined(
     clk, rst, in_valid, in_ready, x, y, out_valid, out_ready, angle, magnitude, config
 ):
     """A stage per micro-rotation with fixed shifts; ports as `cordic_vectoring`."""
+    advance = Signal(bool(0))
+    valid_last = Signal(bool(0))
+    datapath = cordic_pipeline(
+        clk, rst, advance, in_valid, x, y, valid_last, angle, magnitude, config
+    )
+
+    control = stall_control(valid_last, out_ready, advance, in_ready, out_valid)
+
+    return datapath, control
+
+
+@block
+def cordic_pipeline(clk, rst, advance, valid_in, x, y, valid_out, angle, magnitude, config):
+    """The unrolled vectoring CORDIC without handshakes: it moves when `advance` is high.
+
+    A pair entering on a cycle with `advance` high comes out ``config.latency`` advancing
+    cycles later, `valid_out` marking the cycles that carry a result; ports otherwise as
+    `cordic_vectoring`. For composing into a larger pipeline with one stall enable.
+    """
     internal = config.internal_width
     guard = config.guard
-    advance = Signal(bool(0))
-    # Stage i holds the vector after i micro-rotations; stage 0 is the pre-rotated input.
+    # Stage i holds the vector after i micro-rotations; stage 0 is the pre-rotated input. The
+    # tag is (half turn, level): a level vector's angle is exactly its pre-rotation.
     count = config.iterations + 1
     xs = [_signed(internal) for _ in range(count)]
     ys = [_signed(internal) for _ in range(count)]
     zs = [_signed(config.angle_width) for _ in range(count)]
     valid = [Signal(bool(0)) for _ in range(count)]
-    level = [Signal(bool(0)) for _ in range(count)]
-    x_first, y_first, z_first, valid_first, level_first = xs[0], ys[0], zs[0], valid[0], level[0]
+    tags = [Signal(intbv(0)[2:]) for _ in range(count)]
+    x_first, y_first, z_first, valid_first, tag_first = xs[0], ys[0], zs[0], valid[0], tags[0]
     last = count - 1
-    x_last, z_last, valid_last = xs[last], zs[last], valid[last]
+    x_last, z_last, valid_last, tag_last = xs[last], zs[last], valid[last], tags[last]
     x_turned, y_turned = _signed(internal), _signed(internal)
     start_angle = _signed(config.angle_width)
     y_zero = Signal(bool(0))
     turn = cordic_prerotation(x, y, x_turned, y_turned, start_angle, y_zero, config)
+    pi_rom = (config.pi,)
+    angle_bits = config.angle_width
 
     @always_seq(clk.posedge, reset=rst)
     def prerotate():
@@ -156,36 +171,38 @@ def cordic_pipelined(
             x_first.next = x_turned
             y_first.next = y_turned
             z_first.next = start_angle
-            level_first.next = y_zero
-            valid_first.next = in_valid
+            if x < 0:
+                tag_first.next = 3 if y_zero else 2
+            else:
+                tag_first.next = 1 if y_zero else 0
+            valid_first.next = valid_in
 
     stages = [
-        cordic_stage(
+        micro_rotation(
             clk,
             rst,
             advance,
             i,
             angle_step,
-            config,
-            (valid[i], level[i], xs[i], ys[i], zs[i]),
-            (
-                valid[i + 1],
-                level[i + 1] if i + 1 < last else None,
-                xs[i + 1],
-                ys[i + 1] if i + 1 < last else None,
-                zs[i + 1],
-            ),
+            True,
+            (valid[i], tags[i], xs[i], ys[i], zs[i]),
+            (valid[i + 1], tags[i + 1], xs[i + 1], ys[i + 1], zs[i + 1]),
         )
         for i, angle_step in enumerate(config.atan_table)
     ]
 
     @always_comb
     def outputs():
-        advance.next = out_ready or not valid_last
-        in_ready.next = out_ready or not valid_last
-        out_valid.next = valid_last
+        half_turn = intbv(0, min=-(1 << (angle_bits - 1)), max=1 << (angle_bits - 1))
+        half_turn[:] = pi_rom[0]
+        valid_out.next = valid_last
         magnitude.next = x_last >> guard
-        angle.next = z_last
+        if not tag_last[0]:
+            angle.next = z_last
+        elif tag_last[1]:
+            angle.next = half_turn
+        else:
+            angle.next = 0
 
     return turn, prerotate, stages, outputs
 
@@ -225,50 +242,3 @@ def cordic_prerotation(x, y, x_turned, y_turned, start_angle, y_zero, config):
         y_zero.next = y == 0
 
     return turn
-
-
-@block
-def cordic_stage(clk, rst, advance, shift, angle_step, config, before, after):
-    """One micro-rotation by ±atan(2**-shift), registered when the pipeline advances.
-
-    The last stage has no `y` and `level` outputs (`after` holds None there): nothing reads them.
-    """
-    valid_in, level_in, x_in, y_in, z_in = before
-    valid_out, level_out, x_out, y_out, z_out = after
-    rom = (angle_step,)
-    width = config.angle_width
-
-    @always_seq(clk.posedge, reset=rst)
-    def rotate():
-        if advance:
-            step = intbv(0, min=-(1 << (width - 1)), max=1 << (width - 1))
-            step[:] = rom[0]
-            valid_out.next = valid_in
-            level_out.next = level_in
-            if level_in:
-                step[:] = 0
-            if y_in >= 0:
-                x_out.next = x_in + (y_in >> shift)
-                y_out.next = y_in - (x_in >> shift)
-                z_out.next = z_in + step
-            else:
-                x_out.next = x_in - (y_in >> shift)
-                y_out.next = y_in + (x_in >> shift)
-                z_out.next = z_in - step
-
-    @always_seq(clk.posedge, reset=rst)
-    def rotate_last():
-        if advance:
-            step = intbv(0, min=-(1 << (width - 1)), max=1 << (width - 1))
-            step[:] = rom[0]
-            valid_out.next = valid_in
-            if level_in:
-                step[:] = 0
-            if y_in >= 0:
-                x_out.next = x_in + (y_in >> shift)
-                z_out.next = z_in + step
-            else:
-                x_out.next = x_in - (y_in >> shift)
-                z_out.next = z_in - step
-
-    return rotate_last if y_out is None else rotate

@@ -15,7 +15,7 @@ from rfc.messages.codec import decode
 from rfc.messages.layout import flatten
 from rfc.messages.rosbags_adapter import MessageTypes, Middleware, read_bag
 
-#: Pitch within this of ±π/2 gets the issue's looser tolerance (1e-5 rad instead of 1e-6).
+#: Pitch within this of ±π/2 gets the looser tolerance (1e-5 rad instead of 1e-9).
 GIMBAL_ZONE = 1e-3
 #: cos(pitch) below this is gimbal lock for the test: the usual formulas then take roll and yaw
 #: from two numbers made of rounding noise (NumPy's own angles stop reproducing the rotation),
@@ -102,9 +102,9 @@ def angle_error(got: NDArray[np.float64], want: NDArray[np.float64]) -> NDArray[
 
 
 def tolerance(numpy_angles: NDArray[np.float64]) -> NDArray[np.float64]:
-    """The issue's bound per row: 1e-6 rad, 1e-5 rad when pitch is within 1e-3 of ±π/2."""
+    """The bound per row: 1e-9 rad, 1e-5 rad when pitch is within 1e-3 of ±π/2."""
     near_lock = np.abs(numpy_angles[:, 1]) > np.pi / 2 - GIMBAL_ZONE
-    return np.where(near_lock, 1e-5, 1e-6)
+    return np.where(near_lock, 1e-5, 1e-9)
 
 
 def rotation(quaternions: NDArray[np.float64]) -> NDArray[np.float64]:

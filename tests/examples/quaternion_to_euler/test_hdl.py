@@ -1,7 +1,8 @@
-"""The accelerator core in GHDL (cocotb) and in MyHDL against its references.
+"""Both accelerator cores in GHDL (cocotb) and in MyHDL against their references.
 
-Bits must equal the bit-accurate reference exactly; the angles must then be within the issue's
-tolerance of NumPy; every quaternion must take exactly LATENCY cycles, under random idle
+Bits must equal the core's bit-accurate reference exactly; the angles must then be within the
+issue's tolerance of NumPy; a quaternion takes the core's latency (the iterative core exactly
+that, the pipelined one that at least, longer while the consumer stalls it), under random idle
 cycles and backpressure, including inputs outside the domain (which give NaNs and recover).
 """
 
@@ -15,7 +16,13 @@ import pytest
 from rfc.lib.fixed import bits_to_float, float_to_bits
 from rfc.toolchain import convert_myhdl
 from tests.conftest import shared_file
-from tests.examples.quaternion_to_euler.example import core_arguments, core_ports, example
+from tests.examples.quaternion_to_euler.example import (
+    Core,
+    core_arguments,
+    core_ports,
+    cores,
+    example,
+)
 from tests.examples.quaternion_to_euler.quaternions import (
     check_against_numpy,
     distinct,
@@ -37,8 +44,15 @@ def as_bits(quaternions: np.ndarray) -> dict[str, list[int]]:
     }
 
 
-def expected_bits(quaternions: np.ndarray) -> dict[str, list[int]]:
-    rows = [example().reference(*(float_to_bits(float(c)) for c in q)) for q in quaternions]
+CORES = {core.name: core for core in cores()}
+BOTH = pytest.mark.parametrize("core", list(CORES.values()), ids=list(CORES))
+#: GHDL evaluates every stage of the pipelined core on every cycle (about 40 times the iterative
+#: core's work per cycle): it gets every fourth orientation of each set.
+GHDL_STRIDE = {"pipelined": 4, "iterative": 1}
+
+
+def expected_bits(core: Core, quaternions: np.ndarray) -> dict[str, list[int]]:
+    rows = [core.reference(q) for q in quaternions]
     return {name: [row[i] for row in rows] for i, name in enumerate(("roll", "pitch", "yaw"))}
 
 
@@ -55,11 +69,9 @@ def with_out_of_domain(quaternions: np.ndarray) -> np.ndarray:
     return np.array(rows)
 
 
-def cosimulate(tmp_path, quaternions: np.ndarray, seed: int):
-    files = convert_myhdl(
-        example().quat_to_euler(*core_arguments(core_ports())), "quat_to_euler", tmp_path
-    )
-    expected = expected_bits(quaternions)
+def cosimulate(tmp_path, core: Core, quaternions: np.ndarray, seed: int):
+    files = convert_myhdl(core.block(*core_arguments(core_ports())), "quat_to_euler", tmp_path)
+    expected = expected_bits(core, quaternions)
     run = run_handshake(
         files,
         "quat_to_euler",
@@ -70,48 +82,70 @@ def cosimulate(tmp_path, quaternions: np.ndarray, seed: int):
         seed=seed,
     )
     assert run.outputs == expected
-    assert set(run.latencies) == {example().LATENCY}
+    assert_latency(core, run.latencies)
     return angles(run.outputs)
+
+
+def assert_latency(core: Core, latencies: list[int]) -> None:
+    if core.interval == 1:
+        assert min(latencies) == core.latency
+    else:
+        assert set(latencies) == {core.latency}
 
 
 def domain_rows(quaternions: np.ndarray) -> np.ndarray:
     return np.isfinite(quaternions).all(axis=1) & (np.abs(quaternions) < 2).all(axis=1)
 
 
+@BOTH
 @pytest.mark.parametrize("half", [0, 1], ids=["first-half", "second-half"])
-def test_ghdl_equals_the_reference_on_a_thousand_orientations(tmp_path, half):
-    quaternions = with_out_of_domain(np.array_split(orientation_set(), 2)[half])
-    hardware = cosimulate(tmp_path, quaternions, seed=half)
+def test_ghdl_equals_the_reference_on_a_thousand_orientations(tmp_path, core, half):
+    chosen = np.array_split(orientation_set(), 2)[half][:: GHDL_STRIDE[core.name]]
+    quaternions = with_out_of_domain(chosen)
+    hardware = cosimulate(tmp_path, core, quaternions, seed=half)
     inside = domain_rows(quaternions)
     assert np.isnan(hardware[~inside]).all()
     check_against_numpy(hardware[inside], quaternions[inside], example().numpy_reference)
 
 
+@BOTH
 @pytest.mark.parametrize("half", [0, 1], ids=["first-half", "second-half"])
-def test_ghdl_equals_the_reference_on_every_odom_orientation(tmp_path, half):
+def test_ghdl_equals_the_reference_on_every_odom_orientation(tmp_path, core, half):
     quaternions = np.array_split(
         distinct(odom_orientations(shared_file("bags/nav2_turtlebot.mcap"))), 2
-    )[half]
-    hardware = cosimulate(tmp_path, quaternions, seed=10 + half)
+    )[half][:: GHDL_STRIDE[core.name]]
+    hardware = cosimulate(tmp_path, core, quaternions, seed=10 + half)
     check_against_numpy(hardware, quaternions, example().numpy_reference)
 
 
-def simulate_in_myhdl(quaternions: np.ndarray, **stream):
+def simulate_in_myhdl(core: Core, quaternions: np.ndarray, **stream):
     ports = core_ports()
     arguments = core_arguments(ports)
     outputs = ["roll", "pitch", "yaw"]
-    return simulate_stream(
-        example().quat_to_euler, arguments, ports, as_bits(quaternions), outputs, **stream
-    )
+    return simulate_stream(core.block, arguments, ports, as_bits(quaternions), outputs, **stream)
 
 
-def test_myhdl_simulation_equals_the_reference():
+@BOTH
+def test_myhdl_simulation_equals_the_reference(core):
     quaternions = with_out_of_domain(orientation_set()[::40])
-    run = simulate_in_myhdl(quaternions)
-    assert run.outputs == expected_bits(quaternions)
-    assert set(run.latencies) == {example().LATENCY}
+    run = simulate_in_myhdl(core, quaternions)
+    assert run.outputs == expected_bits(core, quaternions)
+    assert_latency(core, run.latencies)
 
 
-def test_myhdl_takes_a_quaternion_every_initiation_interval():
-    run = simulate_in_myhdl(orientation_set()[:4], idle=0.0, backpressure=0.0)
-    assert set(np.diff(run.accepted)) == {example().INITIATION_INTERVAL}
+@BOTH
+def test_myhdl_takes_a_quaternion_every_initiation_interval(core):
+    run = simulate_in_myhdl(core, orientation_set()[:6], idle=0.0, backpressure=0.0)
+    assert set(np.diff(run.accepted)) == {core.interval}
+    assert set(run.latencies) == {core.latency}
+
+
+def test_the_pipelined_core_holds_its_results_while_the_consumer_stalls():
+    # Every result waits for the consumer; none is lost or repeated, and once the pipeline is
+    # full it takes a new quaternion only as a result leaves (the consumer refuses half the
+    # cycles).
+    core = CORES["pipelined"]
+    quaternions = orientation_set()[: core.latency + 15]
+    run = simulate_in_myhdl(core, quaternions, idle=0.0, backpressure=0.5)
+    assert run.outputs == expected_bits(core, quaternions)
+    assert max(np.diff(run.accepted)) > 1

@@ -11,39 +11,52 @@ from rfc.lib.fixed import QUIET_NAN, bits_to_float, float_to_bits
 from tests.conftest import shared_file
 from tests.examples.quaternion_to_euler.example import example
 from tests.examples.quaternion_to_euler.quaternions import (
+    angle_error,
     check_against_numpy,
     odom_orientations,
     orientation_set,
 )
 
+PRECISIONS = pytest.mark.parametrize("precision", ["PIPELINED", "ITERATIVE"])
 
-def reference_angles(quaternions: np.ndarray) -> np.ndarray:
-    reference = example().reference
-    rows = [reference(*(float_to_bits(float(c)) for c in q)) for q in quaternions]
+
+def reference_angles(quaternions: np.ndarray, precision: str = "ITERATIVE") -> np.ndarray:
+    reference, chosen = example().reference, getattr(example(), precision)
+    rows = [reference(*(float_to_bits(float(c)) for c in q), chosen) for q in quaternions]
     return np.array([[bits_to_float(b) for b in row] for row in rows])
 
 
-def test_reference_is_within_tolerance_of_numpy_on_a_thousand_orientations():
+@PRECISIONS
+def test_reference_is_within_tolerance_of_numpy_on_a_thousand_orientations(precision):
     quaternions = orientation_set()
-    check_against_numpy(reference_angles(quaternions), quaternions, example().numpy_reference)
+    angles = reference_angles(quaternions, precision)
+    check_against_numpy(angles, quaternions, example().numpy_reference)
 
 
-def test_reference_is_within_tolerance_of_numpy_on_a_recorded_bag():
+@PRECISIONS
+def test_reference_is_within_1e9_of_numpy_on_a_whole_recorded_bag(precision):
     quaternions = odom_orientations(shared_file("bags/nav2_turtlebot.mcap"))
     assert len(quaternions) == 2639
-    check_against_numpy(reference_angles(quaternions), quaternions, example().numpy_reference)
+    angles = reference_angles(quaternions, precision)
+    error = angle_error(angles, example().numpy_reference(quaternions))
+    assert error.max() <= 1e-9
+    check_against_numpy(angles, quaternions, example().numpy_reference)
 
 
-def test_level_orientations_give_exact_zeros():
+@PRECISIONS
+def test_level_orientations_give_exact_zeros(precision):
     # A robot at rest or driving on the flat: roll and pitch exactly 0, yaw exactly 0 at rest.
-    assert reference_angles(np.array([[0.0, 0.0, 0.0, 1.0]])).tolist() == [[0.0, 0.0, 0.0]]
-    planar = reference_angles(np.array([[-0.0, 0.0, 0.0845736, -0.99641724]]))
+    rest = reference_angles(np.array([[0.0, 0.0, 0.0, 1.0]]), precision)
+    assert rest.tolist() == [[0.0, 0.0, 0.0]]
+    planar = reference_angles(np.array([[-0.0, 0.0, 0.0845736, -0.99641724]]), precision)
     assert planar[0, :2].tolist() == [0.0, 0.0]
 
 
-def test_a_quaternion_and_its_negation_give_the_same_bits():
+@PRECISIONS
+def test_a_quaternion_and_its_negation_give_the_same_bits(precision):
     quaternions = orientation_set()[:200]
-    assert (reference_angles(quaternions) == reference_angles(-quaternions)).all()
+    same = reference_angles(quaternions, precision) == reference_angles(-quaternions, precision)
+    assert same.all()
 
 
 @pytest.mark.parametrize(

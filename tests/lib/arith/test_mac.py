@@ -7,12 +7,21 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from myhdl import ResetSignal, Signal
+from myhdl import ResetSignal, Signal, block
 
 from rfc.lib.arith.mac import multiply, multiply_accumulate
-from rfc.lib.arith.mac_hdl import MAC_LATENCY, MULTIPLY_LATENCY, fixed_mac, fixed_multiply
+from rfc.lib.arith.mac_hdl import (
+    MAC_LATENCY,
+    MULTIPLY_LATENCY,
+    exact_multiply,
+    exact_multiply_stages,
+    fixed_mac,
+    fixed_multiply,
+)
+from rfc.lib.arith.pipeline import delay_line, stage_register, stall_control
 from rfc.lib.fixed import FixedFormat
 from rfc.toolchain import convert_myhdl
+from tests.lib.arith.synth import map_xc7
 from tests.support.cosim import run_handshake, signed, unsigned
 from tests.support.myhdl_stream import simulate_stream
 
@@ -172,3 +181,69 @@ def test_a_pair_every_cycle(block):
         backpressure=0.0,
     )
     assert set(np.diff(run.accepted)) == {1}
+
+
+def test_a_one_slice_multiply_uses_all_four_dsp48_registers(tmp_path):
+    fmt = FixedFormat(18, 16)  # 18 x 18 signed fits one DSP48E1 (25 x 18)
+    signals = ports(fmt)
+    files = convert_myhdl(
+        fixed_multiply(*(signals[n] for n in MULTIPLY_ORDER), fmt), "mul", tmp_path
+    )
+    mapped = map_xc7(files[-1], "mul", tmp_path)
+    assert mapped.dsp_registers == ({"AREG": 1, "BREG": 1, "MREG": 1, "PREG": 1},)
+    # Only the rounding is left in the fabric: one register stage of flip-flops after the DSP.
+    assert mapped.cells.get("FDRE", 0) <= fmt.width + MULTIPLY_LATENCY + 2
+
+
+@block
+def exact_with_handshake(clk, rst, in_valid, in_ready, a, b, out_valid, out_ready, product):
+    """`exact_multiply` with its valid bit in a delay line beside it and one stall enable."""
+    advance, valid_last = Signal(bool(0)), Signal(bool(0))
+    stages = exact_multiply_stages(len(a), len(b))
+    a_reg, b_reg = Signal(a.val), Signal(b.val)
+    valid_in = Signal(bool(0))
+    operands = [
+        stage_register(clk, rst, advance, source, target)
+        for source, target in ((a, a_reg), (b, b_reg), (in_valid, valid_in))
+    ]
+    datapath = exact_multiply(clk, rst, advance, a_reg, b_reg, product)
+    valid = delay_line(clk, rst, advance, valid_in, valid_last, stages)
+    control = stall_control(valid_last, out_ready, advance, in_ready, out_valid)
+    return operands, datapath, valid, control
+
+
+@settings(max_examples=8)
+@given(a_width=st.integers(2, 60), b_width=st.integers(2, 60), data=st.data())
+def test_exact_multiply_gives_the_exact_product_under_backpressure(a_width, b_width, data):
+    a_fmt, b_fmt = FixedFormat(a_width, 0), FixedFormat(b_width, 0)
+    a_values = st.integers(a_fmt.min_raw, a_fmt.max_raw)
+    b_values = st.integers(b_fmt.min_raw, b_fmt.max_raw)
+    pairs = [(a_fmt.min_raw, b_fmt.min_raw), (a_fmt.max_raw, b_fmt.min_raw), (-1, -1)]
+    pairs += data.draw(st.lists(st.tuples(a_values, b_values), min_size=1, max_size=15))
+    signals = ports(a_fmt)
+    signals.update(a=a_fmt.signal(), b=b_fmt.signal())
+    signals["product"] = FixedFormat(a_width + b_width, 0).signal()
+    run = simulate_stream(
+        exact_with_handshake,
+        [signals[n] for n in MULTIPLY_ORDER],
+        signals,
+        {"a": [a for a, _ in pairs], "b": [b for _, b in pairs]},
+        ["product"],
+        seed=data.draw(st.integers(0, 1000)),
+    )
+    assert run.outputs["product"] == [a * b for a, b in pairs]
+    # the operand registers take the pair: the limb products and sums follow
+    assert min(run.latencies) == exact_multiply_stages(a_width, b_width)
+
+
+def test_a_wide_exact_product_keeps_every_dsp48_registered_and_the_path_short(tmp_path):
+    fmt = FixedFormat(46, 44)  # the pipelined quaternion core's components
+    signals = ports(fmt)
+    signals["product"] = FixedFormat(92, 88).signal()
+    files = convert_myhdl(
+        exact_with_handshake(*(signals[n] for n in MULTIPLY_ORDER)), "exact", tmp_path
+    )
+    mapped = map_xc7(files[-1], "exact", tmp_path)
+    assert len(mapped.dsp_registers) == 6  # 2 x 3 limbs of 24 x 17 bits
+    assert all(r["MREG"] == 1 and r["PREG"] == 1 for r in mapped.dsp_registers)
+    assert mapped.arrival_ps <= 5000  # half the period at 100 MHz

@@ -24,6 +24,8 @@ EXAMPLES = (
     "quaternion_to_euler/project.yaml",
     "multi_type/MultiType.yaml",
     "rotation_converter/RotationConverterNode.yaml",  # PFP
+    "franka_fk/franka_fk.yaml",  # interface objects, the arithmetic engine
+    "first_accelerator/mirror.yaml",
 )
 
 _DECLARED = re.compile(

@@ -2,7 +2,8 @@
 
 Robot states from the example's bag maker go through the whole system (subscriber, the
 forward-kinematics accelerator on interface objects, publisher) on ROS 1 as franka_ros
-publishes them, in GHDL, and on ROS 2, in Verilator (the default simulator). Every output must
+publishes them and on ROS 2, in the three readings of the logic: the RTL VHDL in GHDL (ROS 1),
+rfc's Verilog in Verilator (ROS 2) and GHDL's synthesized netlist (ROS 1). Every output must
 equal the accelerator's reference bit for bit and NumPy's float64 kinematics within 1e-9, and
 keep its input's header.
 """
@@ -38,14 +39,18 @@ def example():
 
 
 @pytest.mark.parametrize(
-    ("spec", "bag", "middleware", "simulator"),
+    ("spec", "bag", "middleware", "reading"),
     [
-        ("franka_fk.yaml", "states.bag", "ros1", "ghdl"),
-        ("franka_fk_ros2.yaml", "states.mcap", "ros2", "verilator"),
+        ("franka_fk.yaml", "states.bag", "ros1", ("--simulator", "ghdl")),
+        ("franka_fk_ros2.yaml", "states.mcap", "ros2", ("--simulator", "verilator")),
+        pytest.param(
+            "franka_fk.yaml", "states.bag", "ros1", ("--netlist",), marks=pytest.mark.slow
+        ),
     ],
+    ids=["ros1-rtl", "ros2-verilog", "ros1-netlist"],
 )
 def test_robot_states_give_numpys_kinematics_in_the_logic(
-    tmp_path, example, spec, bag, middleware, simulator
+    tmp_path, example, spec, bag, middleware, reading
 ):
     accelerator, reference = example
     made = subprocess.run([sys.executable, EXAMPLE / "make_bags.py", tmp_path / bag, "3"],
@@ -54,7 +59,7 @@ def test_robot_states_give_numpys_kinematics_in_the_logic(
     out = tmp_path / f"out{Path(bag).suffix}"
     # the FK core's signed rounding bounds are constants: Verilator once read them unsigned
     result = run_rfc("sim", EXAMPLE / spec, "--bag", tmp_path / bag, "--out", out,
-                     "--drain-cycles", "4000", "--simulator", simulator)  # fmt: skip
+                     "--drain-cycles", "4000", *reading)  # fmt: skip
     assert result.returncode == 0, result.stderr
 
     types = message_types(middleware, msg_paths=MSG_PATHS)

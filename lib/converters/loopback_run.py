@@ -1,4 +1,4 @@
-"""Run a bag's messages through a generated subscriber→publisher loopback in GHDL.
+"""Run a bag's messages through a generated subscriber→publisher loopback in simulation.
 
 Every message of one type is parsed by the subscriber and serialized again by the publisher,
 in one of three readings of the same logic: the RTL VHDL in GHDL, GHDL's synthesized netlist of

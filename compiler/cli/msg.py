@@ -189,6 +189,14 @@ def loopback_command(
             "and bus width, then cached).",
         ),
     ] = LoopbackSimulator.GHDL,
+    netlist: Annotated[
+        bool,
+        typer.Option(
+            "--netlist",
+            help="Simulate GHDL's synthesized netlist of the converters (in GHDL) instead of "
+            "their VHDL: what synthesis makes of them.",
+        ),
+    ] = False,
     as_json: Annotated[bool, typer.Option("--json", help="Print one JSON document.")] = False,
 ) -> None:
     """Round-trip a bag's messages through the generated subscriber and publisher.
@@ -196,6 +204,8 @@ def loopback_command(
     Exit status 1 when any message does not come out as rosbags serializes it (with the
     fields left out by --include/--exclude at their defaults).
     """
+    if netlist and simulator is not LoopbackSimulator.GHDL:
+        raise typer.BadParameter("--netlist simulates VHDL netlists: use --simulator ghdl")
     if not bag.exists():
         raise RfcError(f"bag '{bag}' does not exist", hint="give the path of a .bag, .mcap or .db3")
     options = {
@@ -207,6 +217,7 @@ def loopback_command(
         "include": tuple(include or ()),
         "exclude": tuple(exclude or ()),
         "simulator": simulator.value,
+        "netlist": netlist,
     }
     if keep is None:
         report = loopback(type_name, bag, **options)

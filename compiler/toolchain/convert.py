@@ -84,6 +84,7 @@ def convert_myhdl(
             files.append(directory / f"{name}.v")
             _indexed_part_selects(files[-1])
             _negative_literals(files[-1])
+            _signed_constants(files[-1], files[1])
     return files
 
 
@@ -116,6 +117,29 @@ def _negative_literals(path: Path) -> None:
     fixed = _NEGATIVE_LITERAL.sub(lambda m: f"-{m.group(1)}'sd{m.group(2)}", text)
     if fixed != text:
         path.write_text(fixed)
+
+
+_SIGNED_VHDL = re.compile(r"^\s*(?:signal|constant) (\w+)\s*:\s*signed\b", re.M)
+_UNSIGNED_CONSTANT = re.compile(r"^(\s*(?:wire|localparam) )(\[\d+:0\] \w+)\b", re.M)
+
+
+def _signed_constants(verilog: Path, vhdl: Path) -> None:
+    """Declare MyHDL's signed constants signed in the Verilog, as its VHDL of the design does.
+
+    MyHDL (0.11.52) writes a signal that nothing drives as a wire tied to its initial value,
+    and a ``Constant`` as a localparam, but leaves ``signed`` out of both declarations (it
+    writes it for every other signal). Verilog then compares a signed operand with such a
+    constant as unsigned, so a negative bound reads as a large positive one. Both conversions
+    name the design's signals alike, and the VHDL declares the constant ``signed``.
+    """
+    signed = set(_SIGNED_VHDL.findall(vhdl.read_text()))
+    text = verilog.read_text()
+    fixed = _UNSIGNED_CONSTANT.sub(
+        lambda m: f"{m.group(1)}signed {m.group(2)}" if m.group(2).split()[1] in signed else m[0],
+        text,
+    )
+    if fixed != text:
+        verilog.write_text(fixed)
 
 
 def _user_marks(instance: Any) -> list[tuple[Any, Any, bool]]:

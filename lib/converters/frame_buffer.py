@@ -95,8 +95,8 @@ def frame_buffer(
                 tkeep.next = keep
                 tlast.next = left <= width
                 tvalid.next = True
-                read.next = read + 1
-                if left > width:
+                if left > width:  # the last beat leaves `read` on a word of the memory
+                    read.next = read + 1
                     left.next = left - width
                 else:
                     left.next = 0

@@ -1,6 +1,8 @@
-"""Run a bag's messages through a generated subscriber→publisher loopback in GHDL.
+"""Run a bag's messages through a generated subscriber→publisher loopback in simulation.
 
-Every message of one type is parsed by the subscriber and serialized again by the publisher;
+Every message of one type is parsed by the subscriber and serialized again by the publisher,
+in one of three readings of the same logic: the RTL VHDL in GHDL, GHDL's synthesized netlist of
+it in GHDL, or rfc's Verilog in Verilator;
 each frame that comes out is compared with rosbags' serialization of rosbags' deserialization
 of the recorded frame (recorded padding may hold garbage, so the recorded bytes themselves are
 not the reference). Limits are fitted to the bag's messages, so the hardware is as small as the
@@ -10,6 +12,7 @@ runs.
 
 from __future__ import annotations
 
+import re
 import tempfile
 import warnings
 from collections.abc import Iterator, Mapping, Sequence
@@ -38,7 +41,7 @@ from rfc.messages.rosbags_adapter import (
 )
 from rfc.messages.selection import select
 from rfc.messages.values import message_to_values, values_to_message
-from rfc.toolchain import GhdlError, convert_myhdl, simulate
+from rfc.toolchain import GhdlError, convert_myhdl, simulate, synthesize_vhdl
 from rfc.toolchain.verilator import VerilatorError, run_testbench
 
 TESTBENCH = Path(__file__).parent / "hdl" / "loopback_tb.vhd"
@@ -116,6 +119,7 @@ def loopback(
     include: Sequence[str] = (),
     exclude: Sequence[str] = (),
     simulator: str = "ghdl",
+    netlist: bool = False,
 ) -> LoopbackReport:
     """Stream the bag's messages of `type_name` through a subscriber→publisher loopback.
 
@@ -133,6 +137,8 @@ def loopback(
         exclude: These fields do not; the publisher sends their defaults, and the expected
             frames have them too.
         simulator: ``ghdl`` or ``verilator``.
+        netlist: Simulate GHDL's synthesized netlist of the loopback instead of its VHDL (in
+            GHDL).
 
     Returns:
         One result per message.
@@ -155,10 +161,10 @@ def loopback(
     longest_frame = max(len(m.data) for m in messages)
     converters = plan(layout, width, fitted_limits(layout, values, longest_frame))
     if workdir is not None:
-        report = _run(converters, types, messages, workdir, simulator)
+        report = _run(converters, types, messages, workdir, simulator, netlist)
     else:
         with tempfile.TemporaryDirectory(prefix="rfc-loopback-") as scratch:
-            report = _run(converters, types, messages, Path(scratch), simulator)
+            report = _run(converters, types, messages, Path(scratch), simulator, netlist)
     return replace(report, skipped=skipped_topics(bag))
 
 
@@ -265,7 +271,11 @@ class FrameTiming:
 
 
 def run_frames(
-    converters: Plan, frames: Sequence[bytes], workdir: Path, simulator: str = "ghdl"
+    converters: Plan,
+    frames: Sequence[bytes],
+    workdir: Path,
+    simulator: str = "ghdl",
+    netlist: bool = False,
 ) -> list[tuple[bytes, FrameTiming]]:
     """Send frames through the plan's loopback in GHDL or Verilator, one in flight at a time.
 
@@ -278,13 +288,15 @@ def run_frames(
         workdir: The generated HDL and the simulation's files go here.
         simulator: ``ghdl`` (the VHDL and loopback_tb.vhd) or ``verilator`` (the Verilog and
             loopback_tb.v, the same events on the same cycles).
+        netlist: In GHDL, simulate GHDL's synthesized netlist of the loopback
+            (``rfc_loopback_netlist.vhd``) instead of its VHDL.
 
     Returns:
         What the publisher sent for each frame, with its timing, in order; shorter than
         `frames` when the loopback stopped moving (a hardware bug).
 
     Raises:
-        RfcError: The simulation did not run.
+        RfcError: The simulation did not run, or GHDL could not synthesize the loopback.
     """
     width = converters.width
     workdir = workdir.resolve()  # GHDL runs elsewhere: a relative path would point astray
@@ -309,8 +321,9 @@ def run_frames(
                 workdir / "verilator",
             )
         else:
+            sources = [files[0], _netlist(files, workdir)] if netlist else files
             simulate(
-                [*files, TESTBENCH],
+                [*sources, TESTBENCH],
                 "rfc_loopback_tb",
                 workdir / "work",
                 {"WIDTH": width, "INPUT_FILE": source, "OUTPUT_FILE": events},
@@ -321,14 +334,43 @@ def run_frames(
     return list(_outputs(events, width, beats_in))
 
 
+def _netlist(files: Sequence[Path], workdir: Path) -> Path:
+    """GHDL's synthesized netlist of the loopback's VHDL: same entity, same ports.
+
+    It still uses MyHDL's package, the first of `files`.
+
+    Raises:
+        GhdlError: GHDL cannot synthesize it.
+    """
+    netlist = workdir / f"{LOOPBACK}_netlist.vhd"
+    netlist.write_text(_one_bit_vectors(synthesize_vhdl(files, LOOPBACK, workdir / "synth")))
+    return netlist
+
+
+_BIT_SIGNAL = re.compile(r"^\s*signal (\w+)\s*:\s*std_logic;", re.M)
+_BIT_TO_VECTOR = re.compile(r"std_ulogic_vector\((\w+)\)")
+
+
+def _one_bit_vectors(netlist: str) -> str:
+    """Write GHDL's conversions of a bit to a one-bit vector port as an aggregate.
+
+    GHDL (2.0) drives a ``std_logic_vector(0 downto 0)`` output from a ``std_logic`` signal
+    with ``std_ulogic_vector(bit)``, which its own analysis refuses (not closely related
+    types): the 8-bit loopback's ``m_axis_tkeep``. ``(0 => bit)`` is the same vector.
+    """
+    bits = set(_BIT_SIGNAL.findall(netlist))
+    return _BIT_TO_VECTOR.sub(lambda m: f"(0 => {m[1]})" if m[1] in bits else m[0], netlist)
+
+
 def _run(
     converters: Plan,
     types: MessageTypes,
     messages: list[BagMessage],
     workdir: Path,
     simulator: str,
+    netlist: bool,
 ) -> LoopbackReport:
-    outputs = run_frames(converters, [m.data for m in messages], workdir, simulator)
+    outputs = run_frames(converters, [m.data for m in messages], workdir, simulator, netlist)
     canonical = converters.layout.type_name
     results = []
     layout = converters.layout

@@ -1,9 +1,11 @@
-"""examples/franka_fk in the generated logic: FrankaState in, JointTransforms out, in GHDL.
+"""examples/franka_fk in the generated logic: FrankaState in, JointTransforms out.
 
 Robot states from the example's bag maker go through the whole system (subscriber, the
 forward-kinematics accelerator on interface objects, publisher) on ROS 1 as franka_ros
-publishes them and on ROS 2. Every output must equal the accelerator's reference bit for bit
-and NumPy's float64 kinematics within 1e-9, and keep its input's header.
+publishes them and on ROS 2, in the three readings of the logic: the RTL VHDL in GHDL (ROS 1),
+rfc's Verilog in Verilator (ROS 2) and GHDL's synthesized netlist (ROS 1). Every output must
+equal the accelerator's reference bit for bit and NumPy's float64 kinematics within 1e-9, and
+keep its input's header.
 """
 
 from __future__ import annotations
@@ -37,18 +39,27 @@ def example():
 
 
 @pytest.mark.parametrize(
-    ("spec", "bag", "middleware"),
-    [("franka_fk.yaml", "states.bag", "ros1"), ("franka_fk_ros2.yaml", "states.mcap", "ros2")],
+    ("spec", "bag", "middleware", "reading"),
+    [
+        ("franka_fk.yaml", "states.bag", "ros1", ("--simulator", "ghdl")),
+        ("franka_fk_ros2.yaml", "states.mcap", "ros2", ("--simulator", "verilator")),
+        pytest.param(
+            "franka_fk.yaml", "states.bag", "ros1", ("--netlist",), marks=pytest.mark.slow
+        ),
+    ],
+    ids=["ros1-rtl", "ros2-verilog", "ros1-netlist"],
 )
-def test_robot_states_give_numpys_kinematics_in_the_logic(tmp_path, example, spec, bag, middleware):
+def test_robot_states_give_numpys_kinematics_in_the_logic(
+    tmp_path, example, spec, bag, middleware, reading
+):
     accelerator, reference = example
     made = subprocess.run([sys.executable, EXAMPLE / "make_bags.py", tmp_path / bag, "3"],
                           capture_output=True, text=True, check=False)  # fmt: skip
     assert made.returncode == 0, made.stderr
     out = tmp_path / f"out{Path(bag).suffix}"
-    # GHDL: Verilator reads MyHDL's Verilog of the core's signed rounding bounds as unsigned
+    # the FK core's signed rounding bounds are constants: Verilator once read them unsigned
     result = run_rfc("sim", EXAMPLE / spec, "--bag", tmp_path / bag, "--out", out,
-                     "--drain-cycles", "4000", "--simulator", "ghdl")  # fmt: skip
+                     "--drain-cycles", "4000", *reading)  # fmt: skip
     assert result.returncode == 0, result.stderr
 
     types = message_types(middleware, msg_paths=MSG_PATHS)

@@ -25,6 +25,8 @@ EXAMPLES = (
     "multi_type/MultiType.yaml",
     "rotation_converter/RotationConverterNode.yaml",  # PFP
     "sensor_hub/SensorHub.yaml",  # an HLS core behind its ap_ctrl wrapper
+    "franka_fk/franka_fk.yaml",  # interface objects, the arithmetic engine
+    "first_accelerator/mirror.yaml",
 )
 
 _DECLARED = re.compile(

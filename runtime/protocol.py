@@ -1,4 +1,4 @@
-"""The wire protocol between processor and logic: chunks on the two DMA streams (DESIGN.md §5).
+"""The wire protocol between processor and logic: chunks on the two DMA streams (docs/protocol.md).
 
 Every DMA transfer is one *chunk*: an 8-byte little-endian header — ``u16 id`` (subscriber or
 publisher index), ``u16 flags`` (bit 0 START, bit 1 END), ``u32 length`` (the whole message's

@@ -5,9 +5,9 @@ publisher (`rfc.lib.converters.loopback_run.run_frames`): the source never idles
 stalls, one message is in flight. Subscriber latency: first beat in -> fields valid; publisher
 latency: fields given -> last beat out (that cycle included); throughput: beats per cycle while
 a frame crosses each bus. LUT/FF come from GHDL synthesis + Yosys `synth_xilinx` (7-series).
-Anchors (DESIGN.md §12): Quaternion subscriber <= ceil(bytes/width) + 2 cycles (paper: 35 at
-8 bits), publisher <= ceil(bytes/width) + 3 (paper: 28), >= 0.99 beats/cycle on a 640x480
-Image, Image frame-length circuit <= 48 LUTs (the paper's figure).
+Anchors (docs/architecture.md, Targets): Quaternion subscriber <= ceil(bytes/width) + 2
+cycles (paper: 35 at 8 bits), publisher <= ceil(bytes/width) + 3 (paper: 28), >= 0.99
+beats/cycle on a 640x480 Image, Image frame-length circuit <= 48 LUTs (the paper's figure).
 
 Usage:
     .venv/bin/python tools/bench_converters.py [--no-synth] [--image-widths 64 32]
@@ -85,7 +85,7 @@ def latency_rows(work: Path) -> list[str]:
                 beats = -(-len(frame) // (width // 8))
                 target = (
                     f"{beats + 2} / {beats + 3}" if type_name == QUATERNION else "-"
-                )  # DESIGN.md §12 targets only Quaternion
+                )  # the targets (docs/architecture.md) cover only Quaternion
                 rows.append(
                     row(
                         type_name.rsplit("/", 1)[-1],

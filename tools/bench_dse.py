@@ -1,4 +1,4 @@
-"""Benchmark: the DSE's full paper sweep and the SimSo point (DESIGN.md §12).
+"""Benchmark: the DSE's full paper sweep and the SimSo point (docs/architecture.md, Targets).
 
 Measures, each apart:
 
@@ -39,7 +39,7 @@ import textwrap
 import time
 from pathlib import Path
 
-#: DESIGN.md §12 anchor: SimSo simulates EDF with N = 256 for 50,000 cycles in 31 s.
+#: The anchor (docs/architecture.md, Targets): SimSo runs EDF, N = 256, 50,000 cycles in 31 s.
 SIMSO_SECONDS = 31.0
 SIMSO_N, SIMSO_CYCLES = 256, 50_000
 SWEEP_TARGET_SECONDS = 60.0

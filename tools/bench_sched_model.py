@@ -2,8 +2,8 @@
 
 A scheduler-cycle is one clock cycle of one replicate. The DSE (issue 6) needs about 1e8 per
 minute on 2 cores for its full sweep, i.e. about 8.3e5 per second per core ("ratio" column).
-"vs SimSo" compares with DESIGN.md §12's anchor (EDF, N = 256: 50,000 cycles in 31 s) per
-replicate-cycle. Traffic comes from
+"vs SimSo" compares with the anchor (docs/architecture.md, Targets: EDF, N = 256, 50,000
+cycles in 31 s) per replicate-cycle. Traffic comes from
 `Publishers` (DSE-like: T ~ 100, F ~ 100, all released at cycle 0) and its cost is reported
 apart from the scheduler's own `step`.
 
@@ -23,7 +23,7 @@ from rfc.lib.schedulers.model.traffic import Publishers
 from rfc.lib.schedulers.spec import Algorithm
 
 TARGET_PER_CORE = 1e8 / 60 / 2
-#: DESIGN.md §12 anchor: SimSo simulates EDF with N = 256 for 50,000 cycles in 31 s.
+#: The anchor (docs/architecture.md, Targets): SimSo runs EDF, N = 256, 50,000 cycles in 31 s.
 SIMSO_CYCLES_PER_SECOND = 50_000 / 31
 
 

@@ -1,6 +1,6 @@
 """Benchmark: start-up of the command line, measured as a user runs it (process start included).
 
-Times `rfc --help` (target: at most 0.3 s, DESIGN.md §12 and issue 18) and `rfc check` of the
+Times `rfc --help` (target: at most 0.3 s, docs/architecture.md, Targets) and `rfc check` of the
 quaternion example, each the best of `--repeat` runs in a new process, wall and CPU time (user +
 system of the process). The machine may be shared: the load average is printed, and the CPU time
 is the figure that does not depend on it.

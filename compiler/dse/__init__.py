@@ -1,4 +1,4 @@
-"""Design-space exploration of the schedulers (paper §7.2, DESIGN.md §7).
+"""Design-space exploration of the schedulers (paper §7.2, docs/dse.md).
 
 `datasets` draws the traffic, `kernel` simulates it on the compiled scheduler kernels and
 aggregates the metrics as it goes, `engine` runs points in parallel, `metrics` summarizes them

@@ -1,4 +1,4 @@
-"""The traffic of the paper's evaluation (§7.2, DESIGN.md §7): datasets, seeded and reproducible.
+"""The traffic of the paper's evaluation (§7.2, docs/dse.md): datasets, seeded and reproducible.
 
 Accelerator i has a transfer time T_i (beats, one per cycle) and an idle time F_i after its last
 beat before its next message is ready; all are released at cycle 0 and the implicit deadline is

@@ -1,6 +1,6 @@
 """The DSE's inner loop, compiled: traffic, the scheduler's cycle and the metrics, streamed.
 
-Each replicate runs N publishers (DESIGN.md §7): all released at cycle 0, input i sends a
+Each replicate runs N publishers (docs/dse.md): all released at cycle 0, input i sends a
 message of T_i beats (`tvalid` held until its last beat moves, one beat per granted cycle, with
 `tlast` on the last), then stays idle F_i cycles before the next message arrives; its deadline
 is D_i cycles after arrival. The scheduler is `rfc.lib.schedulers.model.kernels.tree_cycle` —

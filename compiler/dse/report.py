@@ -62,7 +62,7 @@ def render(result: SweepResult, figures: list[str]) -> str:
         "<title>rfc dse: scheduler design-space exploration</title>",
         f"<style>{_STYLE}</style></head><body>",
         "<h1>Scheduler design-space exploration</h1>",
-        "<p>Paper §7.2 and DESIGN.md §7; definitions in docs/dse.md. Values are the mean over "
+        "<p>Paper §7.2; definitions in docs/dse.md. Values are the mean over "
         "replicates ± the half-width of the 95&nbsp;% confidence interval (Student's t).</p>",
     ]
     rows = []

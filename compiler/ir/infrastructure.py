@@ -1,7 +1,7 @@
 """What derive-infrastructure makes explicit: the parts of the system the spec leaves implicit.
 
 This is the contract later generators build on. Converters get their selected `Layout` and the
-bus width; the manager gets the ids of the wire protocol (DESIGN.md §5); the publisher side gets
+bus width; the manager gets the ids of the wire protocol (docs/protocol.md); the publisher side gets
 the frame-length circuits and buffers (paper §4.2); the scheduler gets one input per publisher
 with its timing (paper §6).
 

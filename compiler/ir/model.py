@@ -26,7 +26,7 @@ if TYPE_CHECKING:
     from rfc.messages.layout import Layout
     from rfc.messages.rosbags_adapter import Middleware
 
-#: Scheduling algorithms of the PL→PS scheduler (DESIGN.md §6); ``auto`` is left to the DSE.
+#: Scheduling algorithms of the PL→PS scheduler (docs/schedulers.md); ``auto`` is left to the DSE.
 SCHEDULER_ALGORITHMS = ("LRU", "NPFP", "PFP", "ROEDF", "LOEDF", "LST", "auto")
 
 

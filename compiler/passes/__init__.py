@@ -1,1 +1,4 @@
-"""The pass pipeline: named steps from the parsed spec to the holistic model (DESIGN.md §1)."""
+"""The pass pipeline: named steps from the parsed spec to the holistic model.
+
+docs/architecture.md draws the flow.
+"""

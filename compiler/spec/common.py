@@ -46,7 +46,7 @@ _SECONDS = {"ns": 1e-9, "us": 1e-6, "µs": 1e-6, "ms": 1e-3, "s": 1.0}
 
 
 def middleware(text: str, location: SourceLocation) -> Middleware:
-    """Read a middleware as the paper and DESIGN.md spell it (``ROS`` is ROS 1)."""
+    """Read a middleware as the paper and the spec spell it (``ROS`` is ROS 1)."""
     found = _MIDDLEWARES.get(str(text).strip().lower())
     if found is None:
         raise RfcError(

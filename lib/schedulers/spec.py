@@ -19,7 +19,7 @@ from rfc.errors import RfcError, did_you_mean
 MIN_INPUTS = 1
 MAX_INPUTS = 1024
 
-#: Default timing when none is given: the means of the DSE's "large" dataset (DESIGN.md §7).
+#: Default timing when none is given: the means of the DSE's "large" dataset (docs/dse.md).
 DEFAULT_TRANSFER = 100
 DEFAULT_IDLE = 100
 

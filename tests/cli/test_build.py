@@ -1,4 +1,4 @@
-"""`rfc check` and `rfc build`: the command-line contract of DESIGN.md §9 for specs."""
+"""`rfc check` and `rfc build`: the command-line contract (docs/architecture.md) for specs."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""`rfc sched synth`: the JSON contract of DESIGN.md §9, caching, and user errors."""
+"""`rfc sched synth`: the JSON contract (docs/architecture.md), caching, and user errors."""
 
 from __future__ import annotations
 

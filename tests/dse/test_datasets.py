@@ -1,4 +1,4 @@
-"""Datasets as DESIGN.md §7 defines them: parameters, seeding, distributions."""
+"""Datasets as docs/dse.md defines them: parameters, seeding, distributions."""
 
 from __future__ import annotations
 

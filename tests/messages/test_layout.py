@@ -1,4 +1,4 @@
-"""Flattened layouts: paths, widths, offsets and alignment, against DESIGN.md §4."""
+"""Flattened layouts: paths, widths, offsets, alignment (docs/architecture.md, Message layouts)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""The YAML front-end: Listing 1 as printed, the extensions of DESIGN.md §3, and locations."""
+"""The YAML front-end: Listing 1 as printed, the extensions of docs/spec.md, and locations."""
 
 from __future__ import annotations
 

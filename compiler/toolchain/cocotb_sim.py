@@ -142,7 +142,7 @@ def _verilator_model(verilog: Sequence[Path], toplevel: str) -> Path:
     with verilator_environment():
         try:
             runner.build(
-                verilog_sources=list(verilog),
+                sources=list(verilog),
                 hdl_toplevel=toplevel,
                 build_dir=partial,
                 build_args=list(OPTIONS),

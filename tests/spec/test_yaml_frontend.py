@@ -193,9 +193,10 @@ def test_an_unresolved_user_definition_blocks_only_the_specs_that_use_it(tmp_pat
     (tmp_path / "msgs" / "my_msgs" / "msg").mkdir(parents=True)
     (tmp_path / "msgs" / "my_msgs" / "msg" / "Tick.msg").write_text("other_msgs/Thing thing\n")
     design = system(tmp_path, "  msg_paths: [./msgs]")
-    from rfc.passes.pipeline import run_pipeline
+    from rfc.passes.pipeline import MODEL_PIPELINE, run_pipeline
 
-    run_pipeline(design)  # the quaternion system does not use my_msgs/Tick
+    # the quaternion system does not use my_msgs/Tick (its HLS source is a stub: model passes)
+    run_pipeline(design, MODEL_PIPELINE)
     (tmp_path / "uses").mkdir()
     spec = write(
         tmp_path / "uses",
@@ -204,7 +205,7 @@ def test_an_unresolved_user_definition_blocks_only_the_specs_that_use_it(tmp_pat
         ),
     )
     with pytest.raises(RfcError) as caught:
-        run_pipeline(load_spec(spec))
+        run_pipeline(load_spec(spec), MODEL_PIPELINE)
     assert "has type 'other_msgs/msg/Thing', which no definition provides" in caught.value.message
     assert "--msg-path" in str(caught.value)
 

@@ -17,22 +17,36 @@ from rfc.toolchain.ghdl import (
     synthesize_verilog,
     synthesize_vhdl,
 )
-from rfc.toolchain.yosys import Resources, estimate_resources, module_resources
+from rfc.toolchain.sta import TimingPath
+from rfc.toolchain.yosys import (
+    ModuleEstimate,
+    Resources,
+    estimate_modules,
+    estimate_resources,
+    estimate_timing,
+    module_estimate,
+    system_timing,
+)
 
 __all__ = [
     "CosimError",
     "GhdlError",
+    "ModuleEstimate",
     "Resources",
+    "TimingPath",
     "VhdlEntity",
     "VhdlPort",
     "analyze",
     "convert_myhdl",
+    "estimate_modules",
     "estimate_resources",
-    "module_resources",
+    "estimate_timing",
+    "module_estimate",
     "read_entities",
     "run_cocotb",
     "simulate",
     "start_new_design",
     "synthesize_verilog",
     "synthesize_vhdl",
+    "system_timing",
 ]

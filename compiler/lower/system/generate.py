@@ -31,6 +31,7 @@ from rfc.lower.system.components import (
 )
 from rfc.lower.system.guards import SubscriberGuards
 from rfc.lower.system.interfaces import MESSAGE
+from rfc.lower.system.slices import RegisterSlices
 from rfc.lower.system.top import CLOCK, RESET_N, Interface, Terminal, TopBuilder, wire_connection
 from rfc.messages.limits import Limits
 from rfc.passes.check_hardware import check_buffer_memory
@@ -185,6 +186,7 @@ def generate_system(
             interfaces.setdefault((block.name, port), {})[role] = Terminal(cells[suffix], name)
 
     check_buffer_memory(design, buffers)  # after the accelerators: their errors come first
+    slices = RegisterSlices(identifier(design.project.name), directory)
     forks: dict[int, Component] = {}
     by_source: dict[tuple[str, str], list[Connection]] = defaultdict(list)
     for connection in infrastructure.hardware_connections:
@@ -193,13 +195,18 @@ def generate_system(
         targets = [interfaces[(c.destination.block, c.destination.port or "")] for c in connections]
         what = f"connection {connections[0].source} → {connections[0].destination}"
         if len(targets) == 1:
-            wire_connection(builder, interfaces[source], targets[0], what)
+            into = connections[0].destination
+            label = f"{identifier(into.block)}_{identifier(into.port or 'in')}_slice"
+            wire_connection(
+                builder, interfaces[source], slices.insert(builder, targets[0], label), what
+            )
             continue
         if len(targets) not in forks:
             forks[len(targets)] = fork_component(len(targets), directory, f"rfc_fork{len(targets)}")
             components.append(forks[len(targets)])
         _fan_out(builder, interfaces[source], targets, forks[len(targets)].entity, what)
 
+    components += slices.components
     _tie_unused_readies(builder)
     netlist = builder.finish()
     top_file = directory / f"{top_name(design)}.vhd"

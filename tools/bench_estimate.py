@@ -42,7 +42,8 @@ def build(spec: Path, out: Path, cache: Path) -> tuple[float, str]:
 
 def whole_logic(report: str) -> str:
     """The whole logic's row of the report's Timing table: delay, levels, Fmax, path."""
-    row = next(line for line in report.split("## Timing")[1].splitlines() if "whole logic" in line)
+    lines = report.split("## Timing")[1].splitlines()
+    row = next(line for line in lines if line.startswith("| **") and "(whole logic)" in line)
     cells = [c.strip() for c in row.strip("|").split("|")]
     return f"{cells[1]} ns, {cells[2]} levels, {cells[3]} MHz: {cells[5]} ({cells[6]})"
 

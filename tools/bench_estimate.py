@@ -2,7 +2,7 @@
 
 Cold: an empty module cache (every module of hw/verilog/ mapped by Yosys, two at a time, then
 the whole logic timed); warm: the same build again, every figure from the cache. Prints a
-Markdown table with the wall times against issue 18's targets and the whole logic's critical
+Markdown table with the wall times against their targets and the whole logic's critical
 path and Fmax from report.md.
 
 Usage: python tools/bench_estimate.py [--systems quaternion franka]

@@ -16,7 +16,7 @@ from pathlib import Path
 
 from rfc.driver import compile_spec
 from rfc.lower.system.generate import generate_system
-from rfc.toolchain.yosys import module_resources
+from rfc.toolchain.yosys import module_estimate
 
 ROOT = Path(__file__).resolve().parents[1]
 SYSTEMS = {
@@ -37,7 +37,7 @@ def main() -> None:
         with tempfile.TemporaryDirectory(prefix="rfc-bench-") as scratch:
             system = generate_system(compile_spec(str(spec)), Path(scratch))
             wrapper = next(p for p in system.verilog if p.stem.endswith("_ap_ctrl"))
-            figures = module_resources(wrapper, wrapper.stem)
+            figures = module_estimate(wrapper, wrapper.stem).resources
         print(
             f"| {what} | {figures.lut} | {figures.ff} | {figures.carry} | {figures.lutram} "
             f"| {figures.bram} |"

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import sys
+import warnings
 from contextlib import AbstractContextManager, nullcontext
 from pathlib import Path
 from typing import Annotated
@@ -44,7 +45,8 @@ def build(
     estimate: Annotated[
         bool,
         typer.Option(
-            "--estimate", help="Estimate the logic's LUT/FF with Yosys (xc7) for report.md."
+            "--estimate",
+            help="Estimate the logic's LUT/FF/DSP and Fmax with Yosys (xc7) for report.md.",
         ),
     ] = False,
     no_hardware: Annotated[
@@ -70,6 +72,7 @@ def build(
     from rfc.ir.text import format_ir
     from rfc.lower import lower
     from rfc.lower.artifacts import BuildOptions
+    from rfc.lower.system.estimate import TimingWarning
     from rfc.lower.writer import write_artifacts
     from rfc.passes.pipeline import BUILD_PIPELINE, SOFTWARE_BUILD_PIPELINE, pass_names
 
@@ -88,8 +91,19 @@ def build(
     pipeline = SOFTWARE_BUILD_PIPELINE if no_hardware else BUILD_PIPELINE
     design = compile_spec(str(spec), after=dump, pipeline=pipeline)
     options = BuildOptions(emit_ir=emit_ir, estimate=estimate, hardware=not no_hardware)
-    with _working("estimating the logic with Yosys" if estimate else None):
+    with (
+        _working("estimating the logic with Yosys" if estimate else None),
+        warnings.catch_warnings(record=True) as caught,
+    ):
+        warnings.simplefilter("always", TimingWarning)
         artifacts = lower(design, options, spec.read_text(encoding="utf-8"))
+    for warning in caught:
+        if issubclass(warning.category, TimingWarning):
+            print(f"warning: {warning.message}", file=sys.stderr)
+        else:  # not ours to word: as Python would have shown it
+            warnings.showwarning(
+                warning.message, warning.category, warning.filename, warning.lineno
+            )
     write_artifacts(artifacts, output, str(output), inputs=_inputs(spec, design))
     names = ", ".join(a.path for a in artifacts)
     print(f"built {design.project.name} into {output}: {names}", file=sys.stderr)

@@ -13,7 +13,13 @@ from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, T
 from rich.table import Table
 
 from rfc.errors import RfcError
-from rfc.lib.schedulers.generate import entity_name, generate_hdl, grant_latency, synthesize
+from rfc.lib.schedulers.generate import (
+    critical_path,
+    entity_name,
+    generate_hdl,
+    grant_latency,
+    synthesize,
+)
 from rfc.lib.schedulers.spec import (
     DEFAULT_TRANSFER,
     AnySchedulerSpec,
@@ -75,7 +81,7 @@ def synth(
         ),
     ] = None,
 ) -> None:
-    """LUT/FF of one scheduler (GHDL synthesis + Yosys synth_xilinx, 7-series) and its latency."""
+    """LUT/FF, Fmax and latency of one scheduler (GHDL synthesis + Yosys synth_xilinx, sta)."""
     sizes = _sizes(n)
     specs = [parse_scheduler(algorithm, size, transfer, deadline, counter_bits) for size in sizes]
     if len(specs) > 1:
@@ -164,6 +170,7 @@ def _sweep_table(reports: list[dict[str, Any]]) -> Table:
 def synth_report(spec: AnySchedulerSpec, *, use_cache: bool = True) -> dict[str, Any]:
     """The `rfc sched synth --json` document (DESIGN.md §9; keys are only ever added)."""
     result = synthesize(spec, use_cache=use_cache)
+    path = critical_path(spec, use_cache=use_cache)
     return {
         "algorithm": spec.algorithm.value if isinstance(spec, SchedulerSpec) else spec.name,
         "n": spec.n,
@@ -176,6 +183,8 @@ def synth_report(spec: AnySchedulerSpec, *, use_cache: bool = True) -> dict[str,
         "transfer": max(spec.transfer),
         "deadline": max(spec.deadline),
         "cached": result.cached,
+        "fmax_mhz": None if path is None else round(path.fmax_mhz, 1),
+        "critical_path": None if path is None else path.to_json(),
     }
 
 
@@ -191,4 +200,9 @@ def _table(report: dict[str, Any]) -> Table:
         ("burst_latency_cycles", "first grant after all N request (cycles)"),
     ):
         table.add_row(label, str(report[key]))
+    path = report["critical_path"]
+    if path is not None:
+        table.add_row("cell delay of the critical path (ns)", f"{path['delay_ns']:.2f}")
+        table.add_row("Fmax estimate (MHz, routing allowance included)", f"{path['fmax_mhz']:.0f}")
+        table.add_row("critical path", f"{path['start']} → {path['end']}")
     return table

@@ -21,13 +21,9 @@ from rfc.ir.model import Design
 from rfc.lower.artifacts import Artifact, BuildOptions, ReportSection
 from rfc.lower.block_design import block_design, tcl_list, tcl_word
 from rfc.lower.system.accelerators import HlsCore
+from rfc.lower.system.estimate import estimate_logic, resources_section, timing_section
 from rfc.lower.system.generate import SystemHardware, generate_system
-from rfc.lower.system.measures import (
-    buffers_section,
-    latency_section,
-    resources_section,
-    verilog_section,
-)
+from rfc.lower.system.measures import buffers_section, latency_section, verilog_section
 from rfc.lower.vivado import VivadoProject, vivado_artifacts
 from rfc.toolchain import GhdlError, synthesize_vhdl
 
@@ -52,7 +48,9 @@ def hardware(design: Design, options: BuildOptions) -> Iterable[Artifact | Repor
         if system.buffers:
             yield buffers_section(system)
         if options.estimate:
-            yield resources_section(system)
+            estimate = estimate_logic(system)
+            yield resources_section(system, estimate)
+            yield timing_section(design, system, estimate)
     hdl_files = [f"{HW}/{f.name}" for f in system.files]
     project = VivadoProject(
         name=design.project.name,

@@ -27,9 +27,14 @@ _MODULES = {
     "simulate": "ghdl",
     "synthesize_verilog": "ghdl",
     "synthesize_vhdl": "ghdl",
+    "TimingPath": "sta",
+    "ModuleEstimate": "yosys",
     "Resources": "yosys",
+    "estimate_modules": "yosys",
     "estimate_resources": "yosys",
-    "module_resources": "yosys",
+    "estimate_timing": "yosys",
+    "module_estimate": "yosys",
+    "system_timing": "yosys",
 }
 
 __all__ = sorted(_MODULES)

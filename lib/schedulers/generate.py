@@ -29,10 +29,18 @@ from rfc.lib.converters.toplevel import elaboration
 from rfc.lib.schedulers.hardware import top_instance
 from rfc.lib.schedulers.model import model_of
 from rfc.lib.schedulers.spec import AnySchedulerSpec
-from rfc.toolchain import Resources, convert_myhdl, estimate_resources
+from rfc.toolchain import (
+    Resources,
+    TimingPath,
+    convert_myhdl,
+    estimate_resources,
+    estimate_timing,
+)
 
 #: Changes whenever the way figures are produced changes, so old cache entries are not reused.
 _FLOW = "ghdl-synth+yosys-synth_xilinx-xc7-noiopad/1"
+#: The same for the critical path (a delay-aware `-abc9` mapping, then Yosys `sta`).
+_TIMING_FLOW = "ghdl-synth+yosys-synth_xilinx-xc7-noiopad-abc9+sta/1"
 
 
 def entity_name(spec: AnySchedulerSpec) -> str:
@@ -106,21 +114,48 @@ def synthesize(spec: AnySchedulerSpec, *, use_cache: bool = True) -> SynthesisRe
         GhdlError: The generated VHDL does not synthesize (a bug in rfc).
     """
     name = entity_name(spec)
-    digest = hashlib.sha256()
-    for part in (_FLOW, _tool_versions(), repr(spec), _generator_sources()):
-        digest.update(part.encode())
-    entry = cache_directory() / f"{digest.hexdigest()}.json"
+    entry = _cache_entry(_FLOW, spec)
     if use_cache and entry.is_file():
         return SynthesisReport(Resources(**json.loads(entry.read_text())), cached=True)
     with tempfile.TemporaryDirectory(prefix="rfc-sched-") as scratch:
         files = generate_hdl(spec, Path(scratch), name)
         resources = estimate_resources([f for f in files if f.suffix == ".vhd"], name)
     if use_cache:
-        entry.parent.mkdir(parents=True, exist_ok=True)
-        partial = entry.with_suffix(f".{os.getpid()}.tmp")
-        partial.write_text(json.dumps(dataclasses.asdict(resources)))
-        partial.replace(entry)
+        _store(entry, dataclasses.asdict(resources))
     return SynthesisReport(resources, cached=False)
+
+
+def critical_path(spec: AnySchedulerSpec, *, use_cache: bool = True) -> TimingPath | None:
+    """The scheduler's latest path on the 7-series (`-abc9` mapping, Yosys `sta`), cached.
+
+    Raises:
+        GhdlError: The generated VHDL does not synthesize (a bug in rfc).
+    """
+    name = entity_name(spec)
+    entry = _cache_entry(_TIMING_FLOW, spec)
+    if use_cache and entry.is_file():
+        value = json.loads(entry.read_text())
+        return None if value is None else TimingPath(**value)
+    with tempfile.TemporaryDirectory(prefix="rfc-sched-") as scratch:
+        files = generate_hdl(spec, Path(scratch), name)
+        path = estimate_timing([f for f in files if f.suffix == ".vhd"], name)
+    if use_cache:
+        _store(entry, None if path is None else dataclasses.asdict(path))
+    return path
+
+
+def _cache_entry(flow: str, spec: AnySchedulerSpec) -> Path:
+    digest = hashlib.sha256()
+    for part in (flow, _tool_versions(), repr(spec), _generator_sources()):
+        digest.update(part.encode())
+    return cache_directory() / f"{digest.hexdigest()}.json"
+
+
+def _store(entry: Path, value: object) -> None:
+    entry.parent.mkdir(parents=True, exist_ok=True)
+    partial = entry.with_suffix(f".{os.getpid()}.tmp")
+    partial.write_text(json.dumps(value))
+    partial.replace(entry)
 
 
 def grant_latency(spec: AnySchedulerSpec, requests: int = 1) -> int:

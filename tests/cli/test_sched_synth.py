@@ -36,12 +36,27 @@ def test_json_has_the_contract_keys():
     assert report["grant_latency_cycles"] == 1
 
 
+def test_json_has_the_critical_path_and_the_fmax_it_allows():
+    small = synth_json("--algorithm", "npfp", "--n", "2")
+    large = synth_json("--algorithm", "npfp", "--n", "64")
+    for report in (small, large):
+        path = report["critical_path"]
+        assert path["delay_ns"] > 0
+        assert path["levels"] >= 1
+        # routing is allowed as much time again as the cells
+        assert report["fmax_mhz"] == pytest.approx(1000 / (2 * path["delay_ns"]), rel=1e-3)
+    # a priority encoder over 64 requests is deeper than over 2
+    assert large["critical_path"]["delay_ns"] > small["critical_path"]["delay_ns"]
+    assert large["fmax_mhz"] < small["fmax_mhz"]
+
+
 def test_a_second_run_comes_from_the_cache_with_the_same_figures(tmp_path, monkeypatch):
     monkeypatch.setenv("RFC_CACHE_DIR", str(tmp_path / "fresh-cache"))
     first = synth_json("-a", "PFP", "-n", "3", "-o", str(tmp_path / "hdl"))
     second = synth_json("-a", "PFP", "-n", "3")
     assert (first["cached"], second["cached"]) == (False, True)
     assert (first["lut"], first["ff"]) == (second["lut"], second["ff"])
+    assert first["critical_path"] == second["critical_path"]
     assert (tmp_path / "hdl" / "rfc_sched_pfp3.vhd").is_file()
     assert (tmp_path / "hdl" / "rfc_sched_pfp3.v").is_file()
 
@@ -59,6 +74,7 @@ def test_table_output_names_the_figures():
     assert result.returncode == 0, result.stderr
     assert "LUTs" in result.stdout
     assert "grant latency" in result.stdout
+    assert "Fmax estimate" in result.stdout
 
 
 @pytest.mark.parametrize(

@@ -30,6 +30,7 @@ from rfc.lib.converters.toplevel import elaboration, port_signals, top_block
 from rfc.lib.fork import fork_body
 from rfc.lib.hls.adapter import AdapterShape, hls_adapter
 from rfc.lib.manager.entity import ManagerShape, manager_ports, manager_top
+from rfc.lib.slice import slice_body
 from rfc.lower.netlist import EntityDecl
 from rfc.lower.system.interfaces import declaration
 from rfc.messages.limits import Limits
@@ -158,6 +159,33 @@ def fork_component(consumers: int, directory: Path, name: str) -> Component:
         ]
     what = f"handshake fork to {consumers} (rfc)"
     return convert(name, ports, fork_body, directory, what, consumers=consumers)
+
+
+#: The ROS type that makes a one-bit field port a ``std_logic``.
+_BOOL = "bool"
+
+
+def slice_component(
+    fields: tuple[tuple[str, int, bool], ...], directory: Path, name: str
+) -> Component:
+    """A register slice over a message's fields (name, width, single bit) and its handshake."""
+    ports = [
+        Port("clk", 1, Direction.IN, PortRole.CLOCK),
+        Port("rst", 1, Direction.IN, PortRole.RESET),
+        Port("s_valid", 1, Direction.IN, PortRole.VALID),
+        Port("s_ready", 1, Direction.OUT, PortRole.READY),
+        Port("m_valid", 1, Direction.OUT, PortRole.VALID),
+        Port("m_ready", 1, Direction.IN, PortRole.READY),
+    ]
+    for side, direction in (("s", Direction.IN), ("m", Direction.OUT)):
+        ports += [
+            Port(
+                f"{side}_{field}", bits, direction, PortRole.FIELD, ros_type="bool" if one else None
+            )
+            for field, bits, one in fields
+        ]
+    what = f"register slice of a message of {len(fields)} fields (rfc)"
+    return convert(name, ports, slice_body, directory, what, fields=fields)
 
 
 def gate_component(directory: Path, name: str) -> Component:

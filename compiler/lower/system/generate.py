@@ -31,6 +31,7 @@ from rfc.lower.system.components import (
 )
 from rfc.lower.system.guards import SubscriberGuards
 from rfc.lower.system.interfaces import MANAGER, MESSAGE
+from rfc.lower.system.slices import RegisterSlices
 from rfc.lower.system.stream_marks import StreamMarks
 from rfc.lower.system.top import CLOCK, RESET_N, Interface, Terminal, TopBuilder, wire_connection
 from rfc.messages.limits import Limits
@@ -184,6 +185,7 @@ def generate_system(
             interfaces.setdefault((block.name, port), {})[role] = Terminal(cells[suffix], name)
 
     check_buffer_memory(design, buffers)  # after the accelerators: their errors come first
+    slices = RegisterSlices(identifier(design.project.name), directory)
     forks: dict[int, Component] = {}
     marks = StreamMarks(identifier(design.project.name), width, directory, limits)
     by_source: dict[tuple[str, str], list[Connection]] = defaultdict(list)
@@ -196,7 +198,9 @@ def generate_system(
             complete = marks.complete(
                 builder, design, connections[0], interfaces[source], targets[0]
             )
-            wire_connection(builder, complete, targets[0], what)
+            into = connections[0].destination
+            label = f"{identifier(into.block)}_{identifier(into.port or 'in')}_slice"
+            wire_connection(builder, complete, slices.insert(builder, targets[0], label), what)
             continue
         if len(targets) not in forks:
             forks[len(targets)] = fork_component(len(targets), directory, f"rfc_fork{len(targets)}")
@@ -204,6 +208,7 @@ def generate_system(
         _fan_out(builder, interfaces[source], targets, forks[len(targets)].entity, what)
 
     components += marks.components
+    components += slices.components
     _tie_unused_readies(builder)
     netlist = builder.finish()
     top_file = directory / f"{top_name(design)}.vhd"

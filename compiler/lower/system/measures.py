@@ -1,4 +1,4 @@
-"""The report's figures of the logic: latencies (MyHDL simulation) and resources (Yosys).
+"""The report's figures of the logic: latencies (MyHDL simulation), buffers and Verilog sources.
 
 Targets are DESIGN.md §12's: a subscriber within ceil(bytes / bus bytes) + 2 cycles, a
 publisher within ceil(bytes / bus bytes) + 3, an accelerator within 120; the paper's quaternion
@@ -8,9 +8,7 @@ system took 35, 373 and 28 cycles on its 8-bit bus.
 from __future__ import annotations
 
 import math
-from collections import Counter
 
-from rfc.errors import RfcError
 from rfc.ir.model import AcceleratorKind, BlockKind, Design
 from rfc.lib.devices import bram36
 from rfc.lower.artifacts import ReportSection
@@ -22,7 +20,6 @@ from rfc.lower.system.latency import (
     publisher_latency,
     subscriber_latency,
 )
-from rfc.toolchain import Resources, module_resources
 
 #: DESIGN.md §12: an accelerator's latency target in cycles.
 ACCELERATOR_TARGET = 120
@@ -127,47 +124,3 @@ def verilog_section(design: Design, system: SystemHardware) -> ReportSection:
         *markdown_table(["accelerator", "written in", "Verilog"], rows, (False, False, False)),
     ]
     return ReportSection("Verilog", tuple(lines))
-
-
-def resources_section(system: SystemHardware) -> ReportSection:
-    """LUT/FF/DSP/BRAM of the whole logic: Yosys ``synth_xilinx`` on its Verilog (``hw/verilog``).
-
-    Raises:
-        RfcError: The logic holds HLS cores, whose netlists only Vitis HLS makes, or a VHDL
-            accelerator GHDL cannot synthesize.
-    """
-    if system.hls:
-        raise RfcError(
-            "--estimate needs the whole logic in Verilog, but its HLS cores come from Vitis HLS",
-            hint="leave out --estimate; Vitis HLS reports the cores' resources",
-        )
-    if system.vhdl_only:
-        raise RfcError(
-            f"--estimate needs the whole logic in Verilog, but GHDL could not synthesize "
-            f"{', '.join(system.vhdl_only)}, which stays VHDL",
-            hint="run `ghdl --synth --std=08` on the accelerator's sources to see why",
-        )
-    files = {path.stem: path for path in system.verilog}
-    copies = Counter(entity.name for _, entity, _ in system.netlist.instances())
-    parts = {name: module_resources(files[name], name) * n for name, n in copies.items()}
-    total = sum(parts.values(), Resources(0, 0))
-    rows = [
-        [f"`{name}`" + (f" x{copies[name]}" if copies[name] > 1 else ""), *_cells(cells)]
-        for name, cells in parts.items()
-    ]
-    rows.append([f"**{system.top}**", *_cells(total)])
-    lines = [
-        "Yosys `synth_xilinx -family xc7 -noiopad` on each module of `hw/verilog/` out of "
-        "context, summed over the top level's instances (an estimate; Vivado's figures differ).",
-        "",
-        *markdown_table(
-            ["module", "LUT", "FF", "CARRY4", "LUTRAM", "BRAM", "DSP"],
-            rows,
-            (False, True, True, True, True, True, True),
-        ),
-    ]
-    return ReportSection("Resources", tuple(lines))
-
-
-def _cells(cells: Resources) -> list[object]:
-    return [cells.lut, cells.ff, cells.carry, cells.lutram, cells.bram, cells.dsp]

@@ -1,0 +1,97 @@
+"""A register slice: one message between two blocks, every signal it hands on from a register.
+
+The top level puts one on each message handshake between a converter and an accelerator, so
+that no combinational path runs from one generated block into another (a block's timing is
+then its own, docs/performance.md, Timing). It is a skid buffer: ``s_ready``, ``m_valid`` and
+the fields all come from flip-flops, it takes a message every cycle while the consumer does,
+and it holds one message (and one more in its skid register while the consumer stalls), so a
+subscriber can parse the next frame while its consumer still works on the last.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from myhdl import ConcatSignal, Signal, always_comb, always_seq, block, intbv
+
+
+@block
+def register_slice(
+    clk: Any, rst: Any, s_data: Any, s_valid: Any, s_ready: Any, m_data: Any, m_valid: Any,
+    m_ready: Any,
+) -> Any:  # fmt: skip
+    """Pass `s_data` to `m_data` under valid/ready, one message a cycle, all outputs registered."""
+    width = len(s_data)
+    held = Signal(intbv(0)[width:])
+    held_valid = Signal(bool(0))
+    skid = Signal(intbv(0)[width:])
+    skid_valid = Signal(bool(0))
+
+    @always_seq(clk.posedge, reset=rst)
+    def step() -> None:
+        if m_ready or not held_valid:  # the output register is free this cycle
+            if skid_valid:
+                held.next = skid
+                held_valid.next = True
+                skid_valid.next = False
+            else:
+                held.next = s_data
+                held_valid.next = s_valid
+        elif s_valid and not skid_valid:  # taken while the consumer stalls: keep it aside
+            skid.next = s_data
+            skid_valid.next = True
+
+    @always_comb
+    def drive() -> None:
+        s_ready.next = not skid_valid
+        m_valid.next = held_valid
+        m_data.next = held
+
+    return step, drive
+
+
+@block
+def slice_body(fields: tuple[tuple[str, int, bool], ...], **ports: Any) -> Any:
+    """`register_slice` over ports ``s_<field>`` → ``m_<field>`` and the two handshakes.
+
+    Args:
+        fields: Each field's name, width and whether it is a single-bit (``std_logic``) port.
+        **ports: ``clk``, ``rst``, ``s_valid``, ``s_ready``, ``m_valid``, ``m_ready`` and the
+            fields' ports.
+    """
+    total = sum(bits for _, bits, _ in fields)
+    if total == 0:  # a message without fields: only the handshake is registered
+        s_data = Signal(intbv(0)[1:])
+    else:
+        s_data = ConcatSignal(*reversed([ports[f"s_{name}"] for name, _, _ in fields]))
+    m_data = Signal(intbv(0)[max(total, 1) :])
+    core = register_slice(
+        ports["clk"], ports["rst"], s_data, ports["s_valid"], ports["s_ready"], m_data,
+        ports["m_valid"], ports["m_ready"],
+    )  # fmt: skip
+    outputs = []
+    low = 0
+    for name, bits, single in fields:
+        outputs.append(_part(m_data, low, bits, single, ports[f"m_{name}"]))
+        low += bits
+    return core, outputs
+
+
+@block
+def _part(data: Any, low: int, width: int, single: bool, out: Any) -> Any:
+    """Drive `out` with bits ``low`` … ``low + width - 1`` of `data`."""
+    if single:
+
+        @always_comb
+        def bit() -> None:
+            out.next = data[low]
+
+        return bit
+
+    high = low + width
+
+    @always_comb
+    def bits() -> None:
+        out.next = data[high:low]
+
+    return bits

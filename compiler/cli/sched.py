@@ -168,7 +168,7 @@ def _sweep_table(reports: list[dict[str, Any]]) -> Table:
 
 
 def synth_report(spec: AnySchedulerSpec, *, use_cache: bool = True) -> dict[str, Any]:
-    """The `rfc sched synth --json` document (DESIGN.md §9; keys are only ever added)."""
+    """The `rfc sched synth --json` document (docs/architecture.md; keys are only ever added)."""
     result = synthesize(spec, use_cache=use_cache)
     path = critical_path(spec, use_cache=use_cache)
     return {

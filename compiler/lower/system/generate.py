@@ -39,7 +39,7 @@ from rfc.passes.check_hardware import check_buffer_memory
 from rfc.passes.names import snake_identifier as identifier
 from rfc.passes.resolve_scheduler import ResolveScheduler
 
-#: The DMA-side stream groups of the top level (DESIGN.md §5).
+#: The DMA-side stream groups of the top level (docs/protocol.md).
 MM2S, S2MM = "s_axis_mm2s", "m_axis_s2mm"
 _STREAM = ("tdata", "tkeep", "tvalid", "tready", "tlast")
 

@@ -1,6 +1,6 @@
 """The report's figures of the logic: latencies (MyHDL simulation), buffers and Verilog sources.
 
-Targets are DESIGN.md §12's: a subscriber within ceil(bytes / bus bytes) + 2 cycles, a
+Targets (docs/architecture.md): a subscriber within ceil(bytes / bus bytes) + 2 cycles, a
 publisher within ceil(bytes / bus bytes) + 3, an accelerator within 120; the paper's quaternion
 system took 35, 373 and 28 cycles on its 8-bit bus.
 """
@@ -21,7 +21,7 @@ from rfc.lower.system.latency import (
     subscriber_latency,
 )
 
-#: DESIGN.md §12: an accelerator's latency target in cycles.
+#: An accelerator's latency target in cycles (docs/architecture.md, Targets).
 ACCELERATOR_TARGET = 120
 
 
@@ -58,8 +58,8 @@ def latency_section(design: Design, system: SystemHardware) -> ReportSection:
         "Cycles for one message of default values with every ready high, measured in MyHDL's "
         "simulator: subscriber from the first beat to its fields, accelerator from its inputs "
         "to its outputs, publisher from its fields to the last beat (— where rfc cannot "
-        "simulate the block: VHDL and HLS accelerators). Targets: DESIGN.md §12 (frame size "
-        "is the largest frame for variable-size messages). In front of each subscriber, what "
+        "simulate the block: VHDL and HLS accelerators). Targets: docs/architecture.md "
+        "(frame size is the largest frame for variable-size messages). In front of each subscriber, what "
         "keeps malformed frames from its consumers (docs/converters.md, Malformed input): a "
         "drop gate behind a subscriber of fixed-size fields, which adds no cycle, or a frame "
         "guard before one that streams strings or sequences, which holds each frame until a "

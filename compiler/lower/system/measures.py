@@ -56,17 +56,17 @@ def latency_section(design: Design, system: SystemHardware) -> ReportSection:
         rows.append(["publisher", f"`{converter.block}`", measured, f"≤ {beats + 3}"])
     lines = [
         "Cycles for one message of default values with every ready high, measured in MyHDL's "
-        "simulator: subscriber from the first beat to its fields, accelerator from its inputs "
-        "to its outputs, publisher from its fields to the last beat (— where rfc cannot "
-        "simulate the block: VHDL and HLS accelerators). Targets: docs/architecture.md "
-        "(frame size is the largest frame for variable-size messages). In front of each "
-        "subscriber, what keeps malformed frames from its consumers (docs/converters.md, "
-        "Malformed input): a drop gate behind a subscriber of fixed-size fields, which adds no cycle, or a frame "
-        "guard before one that streams strings or sequences, which holds each frame until a "
-        "copy of the subscriber has parsed it: from the frame's first beat in to its first "
-        "beat out to the subscriber, the subscriber's own cycles on that frame (its beats, one "
-        "a cycle, and a few cycles per string or sequence element) plus a constant; the "
-        "subscriber's cycles then follow.",
+        "simulator: subscriber from the first beat to its fields, accelerator from its inputs to "
+        "its outputs, publisher from its fields to the last beat (— where rfc cannot simulate the"
+        " block: VHDL and HLS accelerators). Targets: docs/architecture.md (frame size is the "
+        "largest frame for variable-size messages). In front of each subscriber, what keeps "
+        "malformed frames from its consumers (docs/converters.md, Malformed input): a drop gate "
+        "behind a subscriber of fixed-size fields, which adds no cycle, or a frame guard before "
+        "one that streams strings or sequences, which holds each frame until a copy of the "
+        "subscriber has parsed it: from the frame's first beat in to its first beat out to the "
+        "subscriber, the subscriber's own cycles on that frame (its beats, one a cycle, and a few"
+        " cycles per string or sequence element) plus a constant; the subscriber's cycles then "
+        "follow.",
         "",
         *markdown_table(["block", "name", "cycles", "target"], rows, (False, False, True, True)),
     ]

@@ -25,13 +25,8 @@ import numpy as np
 from myhdl import StopSimulation, always, block, delay, instance
 
 from rfc.lib.converters.plan import plan
-from rfc.lib.converters.prefix_guard import (
-    DECLARED,
-    SLACK_BEATS,
-    checking_plan,
-    prefix_guard,
-    prefix_guard_ports,
-)
+from rfc.lib.converters.prefix_guard import DECLARED, prefix_guard, prefix_guard_ports
+from rfc.lib.converters.prefix_plan import SLACK_BEATS, checking_plan
 from rfc.lib.converters.toplevel import elaboration, port_signals, top_block
 from rfc.messages.layout import flatten
 from rfc.messages.limits import Limits

@@ -27,7 +27,7 @@ from dataclasses import dataclass
 
 from rfc.errors import RfcError
 from rfc.ir.model import AcceleratorType, Block
-from rfc.lib.converters.buffers import Buffer
+from rfc.lib.converters.buffer_sizes import Buffer
 from rfc.lib.converters.plan import plan
 from rfc.lib.converters.ports import ROOT_CHANNEL, Direction, Port, PortRole, stream_bytes
 from rfc.lib.converters.steps import ROOT, Payload, Plan

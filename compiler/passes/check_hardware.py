@@ -32,7 +32,7 @@ from rfc.lib.converters.buffer_sizes import Buffer, buffers_of
 from rfc.lib.converters.plan import plan
 from rfc.lib.converters.ports import Direction as PinDirection
 from rfc.lib.converters.ports import Port, PortRole, Side, accelerator_signature, ports_of
-from rfc.lib.converters.prefix_guard import SLACK_BEATS, checking_plan
+from rfc.lib.converters.prefix_plan import SLACK_BEATS, checking_plan
 from rfc.lib.converters.steps import ROOT, Payload, Plan
 from rfc.lib.devices import block_rams, bram36
 from rfc.messages.limits import Limits

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 import shutil
 import subprocess
 import tempfile
@@ -59,12 +60,31 @@ def synthesize_verilog(files: Sequence[Path], top: str, workdir: Path) -> str:
 def synthesize_vhdl(files: Sequence[Path], top: str, workdir: Path) -> str:
     """Synthesize a VHDL design with `ghdl --synth` and return the netlist as VHDL text.
 
-    The netlist keeps the entity's name and ports, so it replaces the RTL in a simulation.
+    The netlist keeps the entity's name and ports, so it replaces the RTL in a simulation;
+    where GHDL writes a line its own analysis refuses, the line is written the way it accepts.
 
     Raises:
         GhdlError: GHDL cannot synthesize the design.
     """
-    return _synthesize(files, top, workdir, "vhdl")
+    return _analysable(_synthesize(files, top, workdir, "vhdl"))
+
+
+_BIT_SIGNAL = re.compile(r"^\s*signal (\w+)\s*:\s*std_logic;", re.M)
+_BIT_TO_VECTOR = re.compile(r"std_ulogic_vector\((\w+)\)")
+_CHARACTER_AS_VECTOR = re.compile(r"\b((?:un)?signed)'\('([01])'\)")
+
+
+def _analysable(netlist: str) -> str:
+    """Rewrite two constructs of GHDL 2.0's netlists that its own analysis refuses.
+
+    * A ``std_logic`` signal driving a one-bit vector port, ``std_ulogic_vector(bit)`` (not
+      closely related types; the 8-bit bus's ``tkeep``): written ``(0 => bit)``.
+    * A one-bit vector compared with a constant, ``unsigned'('1')`` (a character literal where
+      a string is needed; a one-bit counter of the DMA tap): written ``unsigned'("1")``.
+    """
+    bits = set(_BIT_SIGNAL.findall(netlist))
+    netlist = _BIT_TO_VECTOR.sub(lambda m: f"(0 => {m[1]})" if m[1] in bits else m[0], netlist)
+    return _CHARACTER_AS_VECTOR.sub(lambda m: f'{m[1]}\'("{m[2]}")', netlist)
 
 
 def _synthesize(files: Sequence[Path], top: str, workdir: Path, language: str) -> str:

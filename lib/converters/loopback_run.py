@@ -12,7 +12,6 @@ runs.
 
 from __future__ import annotations
 
-import re
 import tempfile
 import warnings
 from collections.abc import Iterator, Mapping, Sequence
@@ -343,23 +342,8 @@ def _netlist(files: Sequence[Path], workdir: Path) -> Path:
         GhdlError: GHDL cannot synthesize it.
     """
     netlist = workdir / f"{LOOPBACK}_netlist.vhd"
-    netlist.write_text(_one_bit_vectors(synthesize_vhdl(files, LOOPBACK, workdir / "synth")))
+    netlist.write_text(synthesize_vhdl(files, LOOPBACK, workdir / "synth"))
     return netlist
-
-
-_BIT_SIGNAL = re.compile(r"^\s*signal (\w+)\s*:\s*std_logic;", re.M)
-_BIT_TO_VECTOR = re.compile(r"std_ulogic_vector\((\w+)\)")
-
-
-def _one_bit_vectors(netlist: str) -> str:
-    """Write GHDL's conversions of a bit to a one-bit vector port as an aggregate.
-
-    GHDL (2.0) drives a ``std_logic_vector(0 downto 0)`` output from a ``std_logic`` signal
-    with ``std_ulogic_vector(bit)``, which its own analysis refuses (not closely related
-    types): the 8-bit loopback's ``m_axis_tkeep``. ``(0 => bit)`` is the same vector.
-    """
-    bits = set(_BIT_SIGNAL.findall(netlist))
-    return _BIT_TO_VECTOR.sub(lambda m: f"(0 => {m[1]})" if m[1] in bits else m[0], netlist)
 
 
 def _run(

@@ -33,7 +33,6 @@ from rfc.lib.converters.chunk_length import LENGTH_BITS
 from rfc.lib.converters.frame_length import frame_length_circuit, length_formula
 from rfc.lib.converters.guard import guard_ports, held_high
 from rfc.lib.converters.malformed import DROP_REASONS, Reason, counter_name, reason_counter
-from rfc.lib.converters.plan import plan as make_plan
 from rfc.lib.converters.ports import (
     COUNTER_BITS,
     REASON_BITS,
@@ -44,14 +43,10 @@ from rfc.lib.converters.ports import (
     ports_of,
 )
 from rfc.lib.converters.ram import ram
-from rfc.lib.converters.steps import End, Loop, Payload, Plan
+from rfc.lib.converters.steps import Payload, Plan
 from rfc.lib.converters.subscriber import rfc_subscriber
 from rfc.lib.converters.toplevel import port_signals
-from rfc.messages.selection import select
 
-#: Beats beyond the longest prefix the buffer holds: the checker emits the sequence's first
-#: beat only once it has a beat's worth of it, a beat or two after the sequence starts.
-SLACK_BEATS = 4
 #: The port giving the frame's size as the chunk header declared it.
 DECLARED = "frame_length"
 
@@ -61,26 +56,6 @@ class _State(IntEnum):
     REPLAY = 1  # sending the stored beats to the subscriber
     PASS = 2  # the rest of the frame, straight from the bus
     DROP = 3  # consuming the rest of a rejected frame
-
-
-def checking_plan(converters: Plan) -> Plan | None:
-    """The checker's plan (every field parsed and given out) when a prefix suffices, else None.
-
-    A prefix suffices when the frame's size follows from top-level lengths and its last field
-    is a primitive sequence with no sequence of messages or strings in the message.
-    """
-    checking = make_plan(select(converters.layout), 8 * converters.width, converters.limits)
-    steps = checking.steps
-    last = steps[-2] if len(steps) >= 2 and isinstance(steps[-1], End) else None
-    if (
-        checking.store_and_forward
-        or any(isinstance(s, Loop) for s in steps)
-        or not isinstance(last, Payload)
-        or last.terminator
-        or not last.stream
-    ):
-        return None
-    return checking
 
 
 def prefix_guard_ports(width: int) -> list[Port]:

@@ -16,8 +16,10 @@ import inspect
 import itertools
 import linecache
 import sys
+import threading
 import types
 from collections.abc import Callable, Iterable, Iterator, MutableSet, Sequence
+from dataclasses import dataclass, field
 from typing import Any
 
 from myhdl import ResetSignal, Signal, block, intbv
@@ -162,20 +164,50 @@ def elaboration() -> Iterator[None]:
       different bytes in every process (and missed every cache keyed by content): within the
       context, the two MyHDL modules that collect those names use insertion-ordered sets.
 
-    Elaborate and convert inside the same context. The context is not thread-safe (MyHDL's own
-    elaboration is not either); it restores every module it touched on exit.
+    Elaborate and convert inside the same context. Contexts nest, and one thread at a time holds
+    one (MyHDL's own elaboration is not thread-safe); the outermost restores every module it
+    touched on exit.
     """
-    start_new_design()
+    with _ELABORATING:
+        if _patched.depth == 0:
+            _patch_myhdl()
+        _patched.depth += 1
+        start_new_design()
+        try:
+            yield
+        finally:
+            _patched.depth -= 1
+            if _patched.depth == 0:
+                _restore_myhdl()
+
+
+@dataclass
+class _Patched:
+    """The open `elaboration` contexts of the thread holding the lock; what the first replaced."""
+
+    depth: int = 0
+    saved: list[tuple[types.ModuleType, str, object]] = field(default_factory=list)
+
+
+_patched = _Patched()
+#: One thread elaborates at a time: MyHDL's naming state is global, and the patch is undone only
+#: when the outermost context closes.
+_ELABORATING = threading.RLock()
+
+
+def _patch_myhdl() -> None:
     replacements = [(module, "inspect", _QuickInspect("inspect")) for module in _STACK_CALLERS]
     replacements += [(module, "set", _InsertionOrderedSet) for module in _NAME_SET_USERS]
-    saved = [(module, name, vars(module).get(name, _ABSENT)) for module, name, _ in replacements]
+    _patched.saved = [
+        (module, name, vars(module).get(name, _ABSENT)) for module, name, _ in replacements
+    ]
     for module, name, value in replacements:
         setattr(module, name, value)
-    try:
-        yield
-    finally:
-        for module, name, value in saved:
-            if value is _ABSENT:
-                delattr(module, name)
-            else:
-                setattr(module, name, value)
+
+
+def _restore_myhdl() -> None:
+    for module, name, value in _patched.saved:
+        if value is _ABSENT:
+            delattr(module, name)
+        else:
+            setattr(module, name, value)

@@ -103,7 +103,13 @@ def test_enter_at_every_prompt_gives_a_starter_system_that_builds_and_simulates(
 
 
 def test_the_wizard_rebuilds_listing_1_with_the_examples_holistic_model(tmp_path):
-    for name in ("accelerator.py", "quat_to_euler.py", "compare.py", "make_bags.py"):
+    for name in (
+        "accelerator.py",
+        "quat_to_euler.py",
+        "quat_to_euler_pipelined.py",
+        "compare.py",
+        "make_bags.py",
+    ):
         shutil.copy(QUATERNION_EXAMPLE / name, tmp_path / name)
     transcript = drive(tmp_path, listing_1_answers, "-o", "listing1.yaml")
     assert "geometry_msgs/msg/Quaternion\n  x: float64\n  y: float64" in transcript

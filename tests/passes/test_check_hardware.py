@@ -12,7 +12,7 @@ import pytest
 
 from rfc.ir.infrastructure import Converter
 from rfc.lib.converters.plan import plan
-from rfc.lib.converters.prefix_guard import SLACK_BEATS
+from rfc.lib.converters.prefix_plan import SLACK_BEATS
 from rfc.lib.devices import bram36
 from rfc.messages.layout import flatten
 from rfc.messages.limits import Limits

@@ -12,6 +12,7 @@ from rfc.toolchain import (
     estimate_resources,
     read_entities,
     run_cocotb,
+    synthesize_vhdl,
 )
 from tests.toolchain.counter import counter_instance
 
@@ -91,3 +92,33 @@ def test_read_entities_reports_syntax_errors(tmp_path):
     source.write_text("entity bad is port (a : in bit) end;\n")
     with pytest.raises(GhdlError, match=r"bad\.vhd"):
         read_entities(source)
+
+
+ONE_BIT = """library ieee;
+use ieee.std_logic_1164.all;
+use ieee.numeric_std.all;
+
+entity one_bit is
+  port (clk : in std_logic; bit_in : in std_logic;
+        vector_out : out std_logic_vector(0 downto 0); below_one : out std_logic);
+end entity;
+
+architecture rtl of one_bit is
+  signal beat : unsigned(0 downto 0) := "0";
+begin
+  process (clk) begin
+    if rising_edge(clk) then beat <= beat + 1; end if;
+  end process;
+  vector_out(0) <= bit_in;
+  below_one <= '1' when beat < 1 else '0';
+end architecture;
+"""
+
+
+def test_a_netlist_of_one_bit_vectors_is_analysable_by_ghdl(tmp_path):
+    # GHDL 2.0 writes std_ulogic_vector(bit) and unsigned'('1') for these, which it refuses
+    source = tmp_path / "one_bit.vhd"
+    source.write_text(ONE_BIT)
+    netlist = tmp_path / "one_bit_netlist.vhd"
+    netlist.write_text(synthesize_vhdl([source], "one_bit", tmp_path / "synth"))
+    analyze([netlist], tmp_path / "work", "one_bit")

@@ -22,12 +22,8 @@ from rfc.lib.converters.chunk_length import dma_tap, dma_tap_ports, length_port
 from rfc.lib.converters.malformed import DROP_REASONS, counter_name, status_port
 from rfc.lib.converters.plan import plan
 from rfc.lib.converters.ports import Side
-from rfc.lib.converters.prefix_guard import (
-    DECLARED,
-    checking_plan,
-    prefix_guard,
-    prefix_guard_ports,
-)
+from rfc.lib.converters.prefix_guard import DECLARED, prefix_guard, prefix_guard_ports
+from rfc.lib.converters.prefix_plan import checking_plan
 from rfc.lib.converters.steps import Plan
 from rfc.lower.system.components import Component, convert, gate_component, guard_component
 from rfc.lower.system.interfaces import MANAGER, MESSAGE

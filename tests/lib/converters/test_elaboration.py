@@ -6,6 +6,7 @@ import inspect
 import os
 import subprocess
 import sys
+import threading
 from pathlib import Path
 
 import myhdl._block
@@ -18,6 +19,7 @@ from rfc.lib.converters.toplevel import elaboration
 
 CONVERT_ONE = """
 import sys
+import threading
 from pathlib import Path
 from rfc.lib.converters.build import generate
 from rfc.lib.converters.plan import plan
@@ -76,4 +78,26 @@ def _fail_inside_nested_contexts() -> None:
 def test_restored_after_an_error_and_when_nested() -> None:
     with pytest.raises(RuntimeError, match="user's block"):
         _fail_inside_nested_contexts()
+    assert _untouched()
+
+
+def test_threads_elaborate_one_at_a_time_and_leave_nothing_behind() -> None:
+    """Two threads in the context at once (a Dask worker pool does this) restore MyHDL whole."""
+    inside = threading.Barrier(2, timeout=1)
+    overlapped = []
+
+    def elaborate() -> None:
+        with elaboration():
+            try:
+                inside.wait()  # both inside at once only if the contexts overlap
+                overlapped.append(True)
+            except threading.BrokenBarrierError:
+                overlapped.append(False)
+
+    threads = [threading.Thread(target=elaborate) for _ in range(2)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    assert overlapped == [False, False]
     assert _untouched()

@@ -7,4 +7,4 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
 .venv/bin/ruff check .
 .venv/bin/ruff format --check .
-exec .venv/bin/pytest -n "${RFC_TEST_JOBS:-auto}" "$@"
+exec .venv/bin/pytest -n "${RFC_TEST_JOBS:-auto}" --durations=25 "$@"

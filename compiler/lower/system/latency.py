@@ -39,29 +39,7 @@ def subscriber_latency(
     """Cycles from the first payload beat accepted to ``msg_valid`` (default `values`: zeros)."""
     chosen = plan(converter.layout, converter.bus_width, limits)
     ports = (*dma_ports(chosen, Side.SUBSCRIBER), *ports_of(chosen, Side.SUBSCRIBER))
-    frame = encode(converter.layout, default_values(converter.layout) if values is None else values)
-    lanes = converter.bus_width // 8
-    beats = [frame[i : i + lanes] for i in range(0, len(frame), lanes)]
-
-    def drive(s: Mapping[str, Any], cycle: Callable[[], Any]) -> Generator[Any, None, int | None]:
-        now, first = 0, None
-        for index, beat in enumerate(beats):
-            s["s_axis_tdata"].next = int.from_bytes(beat.ljust(lanes, b"\0"), "little")
-            s["s_axis_tkeep"].next = (1 << len(beat)) - 1
-            s["s_axis_tlast"].next = index == len(beats) - 1
-            s["s_axis_tvalid"].next = 1
-            accepted = False
-            while not accepted and now < _LIMIT:
-                yield cycle()
-                now += 1
-                accepted = bool(s["s_axis_tready"])
-            first = now if first is None else first
-        s["s_axis_tvalid"].next = 0
-        while not s["msg_valid"] and now < _LIMIT:
-            yield cycle()
-            now += 1
-        return None if now >= _LIMIT or first is None else now - first + 1
-
+    drive = _frame_into(_beats(converter, values), until="msg_valid")
     with elaboration():
         return _measure(subscriber_top(chosen), ports, drive)
 
@@ -85,29 +63,8 @@ def guard_latency(
     if guard is None:
         return None
     ports = guard_ports(chosen.width)
-    lanes = converter.bus_width // 8
-    frame = encode(converter.layout, default_values(converter.layout) if values is None else values)
-    beats = [frame[i : i + lanes] for i in range(0, len(frame), lanes)]
-
-    def drive(s: Mapping[str, Any], cycle: Callable[[], Any]) -> Generator[Any, None, int | None]:
-        now, first = 0, None
-        for index, beat in enumerate(beats):
-            s["s_axis_tdata"].next = int.from_bytes(beat.ljust(lanes, b"\0"), "little")
-            s["s_axis_tkeep"].next = (1 << len(beat)) - 1
-            s["s_axis_tlast"].next = index == len(beats) - 1
-            s["s_axis_tvalid"].next = 1
-            accepted = False
-            while not accepted and now < _LIMIT:
-                yield cycle()
-                now += 1
-                accepted = bool(s["s_axis_tready"])
-            first = now if first is None else first
-        s["s_axis_tvalid"].next = 0
-        while not s["m_axis_tvalid"] and now < _LIMIT:
-            yield cycle()
-            now += 1
-        return None if now >= _LIMIT or first is None else now - first + 1
-
+    beats = _beats(converter, values)
+    drive = _frame_into(beats, until="m_axis_tvalid")
     with elaboration():
         names = [p.name for p in ports]
         top = top_block("latency_dut", names, frame_guard, plan=chosen, depth=guard.words)
@@ -213,3 +170,35 @@ def _measure(top: Any, ports: tuple[Port, ...] | list[Port], drive: Any) -> int 
         instance_.run_sim(quiet=True)
         instance_.quit_sim()
     return result[0]
+
+
+def _beats(converter: Converter, values: Values | None) -> list[bytes]:
+    """The message's frame (default values unless given) cut into beats of the bus."""
+    frame = encode(converter.layout, default_values(converter.layout) if values is None else values)
+    lanes = converter.bus_width // 8
+    return [frame[i : i + lanes] for i in range(0, len(frame), lanes)]
+
+
+def _frame_into(beats: list[bytes], until: str) -> Callable[..., Generator[Any, None, int | None]]:
+    """A driver feeding `beats` to ``s_axis``: cycles from the first beat taken to `until`."""
+
+    def drive(s: Mapping[str, Any], cycle: Callable[[], Any]) -> Generator[Any, None, int | None]:
+        now, first = 0, None
+        for index, beat in enumerate(beats):
+            s["s_axis_tdata"].next = int.from_bytes(beat, "little")  # little-endian lanes
+            s["s_axis_tkeep"].next = (1 << len(beat)) - 1
+            s["s_axis_tlast"].next = index == len(beats) - 1
+            s["s_axis_tvalid"].next = 1
+            accepted = False
+            while not accepted and now < _LIMIT:
+                yield cycle()
+                now += 1
+                accepted = bool(s["s_axis_tready"])
+            first = now if first is None else first
+        s["s_axis_tvalid"].next = 0
+        while not s[until] and now < _LIMIT:
+            yield cycle()
+            now += 1
+        return None if now >= _LIMIT or first is None else now - first + 1
+
+    return drive

@@ -62,3 +62,21 @@ def built_with_vitis_run(spec: Path, accelerator: str, folder: Path) -> tuple[Pa
     result = run_rfc("build", spec, "-o", out, cwd=ROOT)
     assert result.returncode == 0, result.stderr
     return out, run_script(out / "hls" / accelerator / "run.tcl", folder / "hls.log")
+
+
+#: The paper's HLS image pipeline as the example specifies it (full-HD maxima).
+IMAGE_PIPELINE = ROOT / "examples" / "image_pipeline" / "ImagePipeline_hls.yaml"
+#: Its full-HD maxima, and small ones whose buffers fit the part's block RAM.
+SMALL_IMAGES = {
+    "maxima: {string: 64, fields: {data: 6220800}}": "maxima: {string: 16, fields: {data: 192}}",
+    "maxBytes: 6220900": "maxBytes: 300",
+    "maxBytes: 1228900": "maxBytes: 1200",
+}
+
+
+def shrink_images(spec: Path) -> None:
+    """Give a copy of the HLS image pipeline's spec small images (a no-op on other specs)."""
+    text = spec.read_text()
+    for full_hd, small in SMALL_IMAGES.items():
+        text = text.replace(full_hd, small)
+    spec.write_text(text)

@@ -1,14 +1,14 @@
 """An HLS core whose input port carries two streams (header.frame_id and data), in the logic.
 
 The stand-in of the core Vitis HLS would export for the paper's first image stage
-(``hls_image/rgb_to_gray.cpp``) reads its struct, then copies the frame's ``frame_id`` character
-by character, then turns each RGB pixel into its gray byte — in the function's order, so it
-reads the whole ``frame_id`` before the first pixel. The wrapper starts it at the first byte of
+(``examples/image_pipeline/rgb_to_gray.cpp``) reads its struct, then copies the frame's
+``frame_id`` character by character, then turns each RGB pixel into its gray byte — in the
+function's order, so it reads the whole ``frame_id`` before the first pixel. The wrapper starts it at the first byte of
 ``data``, the port's last stream, and holds ``frame_id`` in a FIFO until then. On buses of 8 and
 64 bits the published images must be OpenCV's integer BT.601 luma of the inputs (NumPy, on
 rosbags' messages) with their stamp and frame_id, and the function's own C simulation
 (`rfc sim`) must agree byte for byte. The paper's three-stage HLS pipeline itself (a copy with
-small maxima) passes `rfc check`.
+small maxima) passes `rfc check` and builds.
 """
 
 from __future__ import annotations
@@ -22,14 +22,20 @@ import pytest
 from rfc.driver import compile_spec
 from rfc.lower.hls_ports import input_holds
 from rfc.messages.rosbags_adapter import message_types, write_bag
-from tests.lower.system.hls_cores import c_simulated, replay_with_stand_in
+from tests.lower.system.hls_cores import (
+    IMAGE_PIPELINE,
+    c_simulated,
+    replay_with_stand_in,
+    shrink_images,
+)
 from tests.support.cli import run_rfc
 from tests.support.vendor_check import check_vivado, run_script
 
 ROOT = Path(__file__).resolve().parents[3]
 HERE = Path(__file__).parent
 SPEC = HERE / "hls_gray" / "gray.yaml"
-PIPELINE = HERE / "hls_image" / "ImagePipeline_hls.yaml"
+#: The example's first stage, as gray.yaml names it.
+GRAY_SOURCE = "../../../../examples/image_pipeline/rgb_to_gray.cpp"
 IMAGE = "sensor_msgs/msg/Image"
 #: (height, width, frame_id) of the RGB images replayed: odd sizes, an empty image, an empty
 #: frame_id and one of the project's maximum (16 characters).
@@ -191,9 +197,9 @@ def test_an_hls_core_taking_a_header_and_an_image_stream_runs_in_the_logic(tmp_p
     images = rgb_bag(tmp_path / "in.mcap")
     folder = tmp_path / "spec" / "hls_gray"
     shutil.copytree(SPEC.parent, folder)
-    shutil.copytree(PIPELINE.parent, folder.parent / "hls_image")
     spec = folder / SPEC.name
-    spec.write_text(SPEC.read_text().replace("busWidth: 64", f"busWidth: {width}"))
+    text = SPEC.read_text().replace("busWidth: 64", f"busWidth: {width}")
+    spec.write_text(text.replace(GRAY_SOURCE, str((SPEC.parent / GRAY_SOURCE).resolve())))
     published = replay_with_stand_in(spec, STAND_IN, tmp_path / "in.mcap", "/image", tmp_path)
     types = message_types("ros2")
     assert [p.topic for p in published] == ["/gray"] * len(images)
@@ -210,15 +216,26 @@ def test_an_hls_core_taking_a_header_and_an_image_stream_runs_in_the_logic(tmp_p
     assert c_simulated(spec, tmp_path / "in.mcap", types, tmp_path) == [p.data for p in published]
 
 
-def test_the_papers_hls_image_pipeline_passes_the_checks_of_the_logic(tmp_path):
+@pytest.fixture
+def small_pipeline(tmp_path: Path) -> Path:
+    """The example's HLS image pipeline with small images, in a folder of its own."""
+    folder = tmp_path / "image_pipeline"
+    shutil.copytree(IMAGE_PIPELINE.parent, folder)
+    shrink_images(folder / IMAGE_PIPELINE.name)
+    return folder / IMAGE_PIPELINE.name
+
+
+def test_the_papers_hls_image_pipeline_passes_the_checks_of_the_logic(small_pipeline):
     # every stage's function against its ports, the rule of the last stream, the block RAM
-    result = run_rfc("check", PIPELINE, cwd=ROOT)
+    result = run_rfc("check", small_pipeline, cwd=ROOT)
     assert result.returncode == 0, result.stderr
 
 
-def test_the_papers_hls_image_pipeline_builds_into_logic_and_scripts_that_hold(tmp_path):
+def test_the_papers_hls_image_pipeline_builds_into_logic_and_scripts_that_hold(
+    tmp_path, small_pipeline
+):
     out = tmp_path / "build"
-    result = run_rfc("build", PIPELINE, "-o", out, cwd=ROOT)
+    result = run_rfc("build", small_pipeline, "-o", out, cwd=ROOT)
     assert result.returncode == 0, result.stderr
     cells = check_vivado(run_script(out / "vivado/build.tcl", tmp_path / "vivado.log"))
     # each stage: the Vitis core and rfc's ap_ctrl_hs wrapper around it

@@ -3,8 +3,9 @@
 The stand-in of the core Vitis HLS would export for the paper's first image stage
 (``examples/image_pipeline/rgb_to_gray.cpp``) reads its struct, then copies the frame's
 ``frame_id`` character by character, then turns each RGB pixel into its gray byte — in the
-function's order, so it reads the whole ``frame_id`` before the first pixel. The wrapper starts it at the first byte of
-``data``, the port's last stream, and holds ``frame_id`` in a FIFO until then. On buses of 8 and
+function's order, so it reads the whole ``frame_id`` before the first pixel. The wrapper starts
+it at the first byte of ``data``, the port's last stream, and holds ``frame_id`` in a FIFO until
+then. On buses of 8 and
 64 bits the published images must be OpenCV's integer BT.601 luma of the inputs (NumPy, on
 rosbags' messages) with their stamp and frame_id, and the function's own C simulation
 (`rfc sim`) must agree byte for byte. The paper's three-stage HLS pipeline itself (a copy with

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Prepare a machine for rfc: GHDL, Yosys and Tcl from the system package manager when missing,
-# and .venv holding rfc with its development extras. Idempotent; quick when already done.
+# Prepare a machine for rfc: GHDL, Yosys, Tcl, g++, make and Perl from the system package manager
+# when missing, and .venv holding rfc with its development extras. Idempotent; quick when done.
 # Usage: tools/setup.sh   (sourced or run; prints nothing when there is nothing to do)
 set -euo pipefail
 
@@ -12,6 +12,11 @@ install_simulators() {
     command -v yosys >/dev/null 2>&1 || missing+=(yosys)
     # tclsh runs the generated Vivado/Vitis scripts under recording stand-ins in the tests.
     command -v tclsh >/dev/null 2>&1 || missing+=(tcl)
+    # Verilator's models and rfc's HLS C-simulation are compiled with g++ and make; Verilator's
+    # driver script is Perl.
+    command -v g++ >/dev/null 2>&1 || missing+=(g++)
+    command -v make >/dev/null 2>&1 || missing+=(make)
+    command -v perl >/dev/null 2>&1 || missing+=(perl)
     [ ${#missing[@]} -eq 0 ] && return 0
     local cmd="apt-get update && DEBIAN_FRONTEND=noninteractive apt-get install -y ${missing[*]}"
     echo "rfc set-up: installing ${missing[*]}" >&2

@@ -19,8 +19,9 @@ import pytest
 from tests.support.cli import run_rfc
 
 ROOT = Path(__file__).resolve().parents[3]
-#: The examples whose logic rfc builds (image_pipeline refuses its buffers at full HD).
+#: The examples whose logic rfc builds.
 EXAMPLES = (
+    "image_pipeline/ImagePipeline.yaml",  # three MyHDL stages on typed streams
     "quaternion_to_euler/project.yaml",
     "multi_type/MultiType.yaml",
     "rotation_converter/RotationConverterNode.yaml",  # PFP

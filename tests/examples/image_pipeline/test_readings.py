@@ -18,7 +18,7 @@ from rfc.messages.rosbags_adapter import message_types, read_bag
 from tests.examples.image_pipeline.example import EXAMPLE, example_module
 from tests.support.sim_readings import READINGS, replay_readings
 
-#: Height by width: 1 to 8 pixels, so 3 bytes a pixel takes every value modulo 8 bytes.
+#: Height by width: 1 to 8 pixels of 3 bytes, so `data` takes every length modulo 8 bytes.
 SIZES = ((1, 1), (1, 2), (1, 3), (2, 2), (1, 5), (2, 3), (1, 7), (2, 4))
 
 
@@ -28,15 +28,12 @@ def replayed(tmp_path_factory) -> tuple[list[np.ndarray], dict[str, Path]]:
     folder = tmp_path_factory.mktemp("images")
     rng = np.random.default_rng(14)
     images = [rng.integers(0, 256, size=(h, w, 3), dtype=np.uint8) for h, w in SIZES]
+    assert sorted(image.size % 8 for image in images) == list(range(8))
     bag = folder / "images.mcap"
     example_module("make_bag").write_images(bag, images)
     # the stages compute for up to a cycle per pixel after the last input beat
     spec = EXAMPLE / "ImagePipeline.yaml"
     return images, replay_readings(spec, bag, folder, "--drain-cycles", "5000")
-
-
-def test_the_sizes_take_every_length_modulo_the_bus():
-    assert sorted(3 * h * w % 8 for h, w in SIZES) == list(range(8))
 
 
 @pytest.mark.slow

@@ -2,8 +2,8 @@
 
 Each reading replays the same bag through the same spec: the VHDL in GHDL (``--simulator
 ghdl``), GHDL's synthesized netlist of every generated component with the structural top kept
-(``--netlist``) and rfc's Verilog in Verilator (``--simulator verilator``). The readings share
-one cache folder, so the logic's artifacts are made once.
+(``--netlist``) and rfc's Verilog in Verilator (``--simulator verilator``). The replays keep
+their cache (``RFC_CACHE_DIR``: compiled models) in the test's folder, apart from the user's.
 """
 
 from __future__ import annotations

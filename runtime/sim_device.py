@@ -25,8 +25,8 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from rfc.errors import RfcError
 from rfc.runtime.dma_device import FileDma
-from rfc.runtime.errors import RfcError
 from rfc.runtime.plan import RuntimePlan
 
 #: Seconds GHDL may take to analyse the logic and connect.
@@ -50,7 +50,7 @@ class SimulatedLogic:
 
     channel: FileDma
     connection: socket.socket
-    process: subprocess.Popen
+    process: subprocess.Popen[bytes]
     workdir: Path
     taken: threading.Semaphore = field(default_factory=lambda: threading.Semaphore(0))
 

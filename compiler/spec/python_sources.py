@@ -14,7 +14,7 @@ from typing import Any
 
 from rfc.errors import RfcError
 from rfc.ir.model import AcceleratorType
-from rfc.runtime.user_code import running_user_code
+from rfc.user_code import running_user_code
 
 
 def function_in(path: Path, name: str, accelerator: AcceleratorType, role: str) -> Any:

@@ -38,17 +38,18 @@ def build_package_tree(root: Path = ROOT, tree: Path = TREE) -> Path:
 
 def source_path(tree_path: str, root: Path = ROOT, tree: Path = TREE) -> str:
     """Map a path inside the tree back to the file in the checkout (for readable reports)."""
+    path = Path(os.path.normpath(tree_path))
     try:
-        relative = Path(tree_path).relative_to(tree)
+        relative = path.relative_to(tree)
     except ValueError:
-        return tree_path
+        return os.path.relpath(path)
     for package, directory in sorted(PACKAGE_DIRS.items(), key=lambda item: -len(item[0])):
         try:
             rest = relative.relative_to(package)
         except ValueError:
             continue
         return os.path.relpath(root / directory / rest)
-    return tree_path
+    return os.path.relpath(path)
 
 
 if __name__ == "__main__":

@@ -99,7 +99,7 @@ CASES = {
     ),
     "buffers beyond the block ram": (
         multi_type_at_default_maxima,
-        "the logic's buffers need 3,339 block RAMs of 36 Kb at the project's maxima",
+        "the logic's buffers need 2,059 block RAMs of 36 Kb at the project's maxima",
     ),
 }
 

@@ -16,7 +16,9 @@ Behind a record-first producer (`Plan.streamed_last`) the frame starts at the fi
 the message's last stream, which goes straight through; the message is taken at the end,
 once its ``valid`` says the producer has handed everything over. A stream that ends early is
 padded with zeros to its announced length, beats beyond it are taken and dropped; either
-counts one in ``error_count``.
+counts one in ``error_count``. The earlier strings come through FIFOs (`buffers`), whose
+``held`` emptiness tells the same for them: the producer has gone on to the last stream (or
+finished) and a FIFO is empty while its stream still owes beats.
 """
 
 from __future__ import annotations
@@ -72,8 +74,12 @@ def _length_inputs(plan: Plan) -> tuple[list[str], tuple[int, ...]]:
 
 
 @block
-def rfc_publisher(plan: Plan, **ports: Any) -> Any:
-    """The publisher for `plan`; `ports` holds one signal per name of `publisher_ports`."""
+def rfc_publisher(plan: Plan, held: dict[str, Any] | None = None, **ports: Any) -> Any:
+    """The publisher for `plan`; `ports` holds one signal per name of `publisher_ports`.
+
+    `held`: behind a record-first producer, per stream that comes through a FIFO, a signal
+    high while that FIFO holds nothing.
+    """
     t = tables(plan)
     width = plan.width
     # A pad is at most 7 bytes: compare it with a constant its 3 bits hold (8 would read as 0).
@@ -136,6 +142,15 @@ def rfc_publisher(plan: Plan, **ports: Any) -> Any:
         ports[f"{plan.steps[through].stream}_tvalid"] if streaming else Constant(bool(0))
     )
     faulty, faulty_n, drain = (Signal(bool(0)) for _ in range(3))
+    held = held or {}
+    held_table = [0] * len(plan.steps)
+    empties = [Constant(bool(0))]
+    for at, step in enumerate(plan.steps):
+        if isinstance(step, Payload) and step.stream in held:
+            held_table[at] = len(empties)
+            empties.append(held[step.stream])
+    gone = Signal(bool(0)) if held else Constant(bool(0))  # the current step's FIFO is empty
+    leftover = Signal(bool(0)) if held else Constant(bool(0))  # some FIFO still holds beats
     mismatches = Signal(intbv(0)[COUNTER_BITS:])
 
     channel_valids = [
@@ -207,7 +222,9 @@ def rfc_publisher(plan: Plan, **ports: Any) -> Any:
             faulty_n.next = False
             running = True
         # the producer is done while the streamed-through stream still owes bytes
-        ended = streaming and pc == through_at and msg_valid and not stream_valid
+        finished = msg_valid and pc == through_at
+        moved_on = gone and (msg_valid or through_valid)
+        ended = streaming and (finished or moved_on) and not stream_valid
         if running and owner_valid:
             if kind == Kind.RECORD:
                 if chunk == 0 and pad != 0:
@@ -291,7 +308,7 @@ def rfc_publisher(plan: Plan, **ports: Any) -> Any:
                 else:
                     pc_n.next = pc + 1
             elif streaming:
-                if through_valid:  # beats beyond the announced length
+                if through_valid or leftover:  # beats beyond the announced length
                     drain.next = True
                     faulty_n.next = True
                 elif msg_valid:
@@ -345,6 +362,9 @@ def rfc_publisher(plan: Plan, **ports: Any) -> Any:
         blocks.append(stream_handshakes(plan, ports, pc, stream_take, stream_valid, drain))
     if streaming:
         blocks.append(follow(mismatches, ports["error_count"]))
+    if held:
+        blocks.append(select_bit(bits_of(empties), tuple(held_table), pc, gone))
+        blocks.append(anything_left(bits_of(empties[1:]), leftover))
     blocks.append(
         loop_counters(
             plan, clk, rst, pc, count, load_loop, next_element, loop_counts, loop_more, more
@@ -415,6 +435,18 @@ def stream_ready(take: Any, pc: Any, at: int, ready: Any) -> Any:
 
 
 @block
+def anything_left(empties: Any, left: Any) -> Any:
+    """`left` while any of the FIFOs whose `empties` bits these are holds a beat."""
+    full = 2 ** len(empties) - 1
+
+    @always_comb
+    def check() -> None:
+        left.next = empties != full
+
+    return check
+
+
+@block
 def draining_ready(take: Any, pc: Any, at: int, drain: Any, ready: Any) -> Any:
     """`stream_ready`, and every beat while `drain`: the streamed-through stream's extra beats."""
 
@@ -437,7 +469,7 @@ def stream_handshakes(
     for index, at in enumerate(t.streams):
         name = plan.steps[at].stream
         ready = ports[f"{name}_tready"]
-        if at == plan.streamed_last:
+        if plan.streamed_last is not None and plan.steps[at].channel == 0:
             blocks.append(draining_ready(take, pc, at, drain, ready))
         else:
             blocks.append(stream_ready(take, pc, at, ready))

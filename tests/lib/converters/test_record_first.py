@@ -66,12 +66,15 @@ def record_first(middleware: Middleware, width: int) -> Plan:
     return replace(plan(layout, width, LIMITS), record_first=True)
 
 
-def publish(chosen: Plan, messages: list, extra: list[int], seed: int) -> tuple[list, int]:
+def publish(
+    chosen: Plan, messages: list, seed: int, extra: dict[tuple[int, str], int] | None = None
+) -> tuple[list, int]:
     """Run the producer bench; return the frames (bytes, frame_length) and ``error_count``.
 
-    `extra[i]`: beats of ``data`` the producer streams beyond (or, negative, short of) what
-    message `i` announces.
+    `extra[(i, stream)]`: beats of that stream the producer sends beyond (or, negative, short
+    of) what message `i` announces.
     """
+    extra = extra or {}
     rng = random.Random(seed)
     ports = buffered_ports(chosen)
     signals = port_signals(ports)
@@ -116,16 +119,14 @@ def publish(chosen: Plan, messages: list, extra: list[int], seed: int) -> tuple[
                 taken = transactions(chosen, message)
                 for port in record:  # unknown while the earlier strings go
                     signals[port].next = rng.randrange(2 ** len(signals[port]))
-                for name in earlier:
-                    for data in taken.streams.get(name, []):
-                        yield from send(name, data)
-                for port in record:
-                    signals[port].next = taken.record[port]
-                pixels = b"".join(taken.streams.get(last.stream, []))
-                beat = len(signals[f"{last.stream}_tdata"]) // 8
-                size = max(0, len(pixels) + beat * extra[index])
-                streamed = (pixels + bytes(rng.randrange(256) for _ in range(size)))[:size]
-                yield from send(last.stream, streamed)
+                for name in (*earlier, last.stream):
+                    if name == last.stream:
+                        for port in record:
+                            signals[port].next = taken.record[port]
+                    data = b"".join(taken.streams.get(name, []))
+                    beat = len(signals[f"{name}_tdata"]) // 8
+                    size = max(0, len(data) + beat * extra.get((index, name), 0))
+                    yield from send(name, (data + rng.randbytes(size))[:size])
                 signals["msg_valid"].next = 1
                 yield clk.posedge
                 while not signals["msg_ready"]:
@@ -133,6 +134,7 @@ def publish(chosen: Plan, messages: list, extra: list[int], seed: int) -> tuple[
                 signals["msg_valid"].next = 0
             while len(frames) < len(messages):
                 yield clk.posedge
+            yield clk.posedge  # the last message's count shows after the edge that took it
             errors.append(int(signals["error_count"]))
             raise StopSimulation
 
@@ -172,30 +174,31 @@ def test_images_leave_byte_exact_with_only_the_short_strings_buffered(middleware
     layout = flatten(types, IMAGE)
     messages = images(middleware, seed=width)
     values = [message_to_values(m, layout) for m in messages]
-    frames, errors = publish(chosen, values, [0] * len(values), seed=width)
+    frames, errors = publish(chosen, values, seed=width)
     expected = [types.serialize(m, IMAGE) for m in messages]
     assert frames == [(frame, len(frame)) for frame in expected]
     assert errors == 0
 
 
 @pytest.mark.parametrize("middleware", [Middleware.ROS1, Middleware.ROS2])
-def test_a_stream_short_or_long_of_its_length_is_padded_or_cut_and_counted(middleware):
-    width = 32
-    chosen = record_first(middleware, width)
+def test_streams_short_or_long_of_their_length_are_padded_or_cut_and_counted(middleware):
+    chosen = record_first(middleware, 32)  # beats of 4 bytes
     types = message_types(middleware)
     layout = flatten(types, IMAGE)
     messages = images(middleware, seed=5)
     values = [message_to_values(m, layout) for m in messages]
-    # 3x5 rgb8: 45 bytes in 12 beats, sent 2 short; 1x17: 17 bytes in 5 beats, sent 3 more
-    extra = [-2, 0, 3, 0, 0]
-    frames, errors = publish(chosen, values, extra, seed=9)
-    expected = [bytearray(types.serialize(m, IMAGE)) for m in messages]
-    data = values[0]["data"].tobytes()
-    kept = len(data) - 2 * width // 8
-    expected[0][-len(data) :] = data[:kept] + bytes(len(data) - kept)  # zeros for the missing
-    assert [f for f, _ in frames] == [bytes(e) for e in expected]
-    assert [n for _, n in frames] == [len(e) for e in expected]
-    assert errors == 2
+    # 3x5 rgb8: 45 pixel bytes, 2 beats short; the empty image as announced; 1x17: 8 bytes of
+    # frame_id, a beat short; 7x1 rgb8: 12 bytes of frame_id, 2 beats more; 4x9: 3 beats more
+    extra = {(0, "data"): -2, (2, "header_frame_id"): -1, (3, "header_frame_id"): 2,
+             (4, "data"): 3}  # fmt: skip
+    frames, errors = publish(chosen, values, seed=9, extra=extra)
+    # what was announced, with the missing bytes zero: the beats sent are a prefix of it
+    data, name = bytes(messages[0].data), messages[2].header.frame_id
+    messages[0].data[:] = np.frombuffer(data[:-8] + bytes(8), np.uint8)
+    messages[2].header.frame_id = name[:4] + "\0" * 4
+    expected = [types.serialize(m, IMAGE) for m in messages]
+    assert frames == [(frame, len(frame)) for frame in expected]
+    assert errors == 4
 
 
 def test_a_producer_that_is_not_record_first_keeps_every_stream_buffered():

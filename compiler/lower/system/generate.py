@@ -35,7 +35,7 @@ from rfc.lower.system.slices import RegisterSlices
 from rfc.lower.system.stream_marks import StreamMarks
 from rfc.lower.system.top import CLOCK, RESET_N, Interface, Terminal, TopBuilder, wire_connection
 from rfc.messages.limits import Limits
-from rfc.passes.check_hardware import check_buffer_memory
+from rfc.passes.check_hardware import check_buffer_memory, record_first
 from rfc.passes.names import snake_identifier as identifier
 from rfc.passes.resolve_scheduler import ResolveScheduler
 
@@ -146,7 +146,12 @@ def generate_system(
         for converter in converters:
             label = identifier(converter.block)
             component = converter_component(
-                converter, side, directory, f"{label}_{side.value}", limits
+                converter,
+                side,
+                directory,
+                f"{label}_{side.value}",
+                limits,
+                side is Side.PUBLISHER and record_first(design, converter),
             )
             components.append(component)
             if component.buffers:

@@ -2,17 +2,55 @@
 
 Every error a user can cause is an `RfcError`: the command line prints it as one message (with
 the spec's file:line:col when known), exits with status 1 and shows no traceback. Anything else
-escaping is a bug in rfc.
+escaping is a bug in rfc. The processor-side runtime reports its errors with the same class: this
+module needs nothing but the standard library, so the node imports it without the compiler's
+dependencies.
 """
 
 from __future__ import annotations
 
 import difflib
 from collections.abc import Iterable
-
-from rfc.runtime.errors import RfcError, SourceLocation
+from dataclasses import dataclass
 
 __all__ = ["RfcError", "SourceLocation", "closest", "did_you_mean"]
+
+
+@dataclass(frozen=True)
+class SourceLocation:
+    """Where a spec element was written: file, 1-based line and column."""
+
+    file: str
+    line: int
+    column: int
+
+    def __str__(self) -> str:
+        return f"{self.file}:{self.line}:{self.column}"
+
+
+class RfcError(Exception):
+    """An error in the user's input: a sentence, where it happened, and a way out.
+
+    Args:
+        message: What is wrong, naming the bad value and what was expected.
+        location: The spec element responsible, when the input came from a spec.
+        hint: A suggestion, such as the closest valid name.
+    """
+
+    def __init__(
+        self, message: str, *, location: SourceLocation | None = None, hint: str | None = None
+    ) -> None:
+        super().__init__(message)
+        self.message = message
+        self.location = location
+        self.hint = hint
+
+    def __str__(self) -> str:
+        where = f"{self.location}: " if self.location else ""
+        text = f"{where}{self.message}"
+        if self.hint:
+            text += f"\n  hint: {self.hint}"
+        return text
 
 
 def closest(word: str, candidates: Iterable[str], limit: int = 3) -> list[str]:

@@ -17,10 +17,10 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from enum import StrEnum
 
+from rfc.errors import RfcError
+from rfc.messages.codec import FrameError, decode
 from rfc.runtime.account import Account
-from rfc.runtime.codec import FrameError, decode
-from rfc.runtime.errors import RfcError
-from rfc.runtime.plan import Route, RuntimePlan, ToLogic, ToSoftware, ToTopic
+from rfc.runtime.plan import Route, RuntimePlan, ToLogic, TopicInput, ToSoftware, ToTopic
 from rfc.runtime.protocol import Chunk, ProtocolError, Reassembler, message_chunk
 from rfc.runtime.queues import Overflow
 from rfc.runtime.scheduling import PerSubscriberLRU, SharedFifo, SoftwareScheduler
@@ -92,7 +92,7 @@ class Runtime:
         self.software = plan.software_accelerators()
         self._reassembler = Reassembler()
         self._logic_layouts = {c.id: c.layout for c in plan.logic_inputs}
-        self._inputs = {}
+        self._inputs: dict[str, list[TopicInput]] = {}
         for topic_input in plan.inputs:
             self._inputs.setdefault(topic_input.topic, []).append(topic_input)
 

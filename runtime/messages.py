@@ -13,8 +13,8 @@ from collections.abc import Mapping
 from rosbags.serde import SerdeError
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 
-from rfc.runtime.codec import FrameError
-from rfc.runtime.layout import Middleware
+from rfc.messages.codec import FrameError
+from rfc.messages.layout_model import Middleware
 
 
 class MessageObjects:

@@ -25,11 +25,11 @@ import time
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
+from rfc.errors import RfcError
+from rfc.messages.layout_model import Middleware
 from rfc.runtime.account import Account
 from rfc.runtime.core import Published, QueueConfig, QueuePolicy, Runtime
 from rfc.runtime.dma_device import DmaChannels
-from rfc.runtime.errors import RfcError
-from rfc.runtime.layout import Middleware
 from rfc.runtime.plan import RuntimePlan, load_plan
 from rfc.runtime.protocol import ProtocolError
 from rfc.runtime.status import decode_status, is_status, status_request

@@ -19,9 +19,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from rfc.runtime.errors import RfcError
-from rfc.runtime.layout import Layout, Middleware, layout_from_json
-from rfc.runtime.limits import Limits, limits_from_json
+from rfc.errors import RfcError
+from rfc.messages.layout_model import Layout, Middleware, layout_from_json
+from rfc.messages.limits import Limits, limits_from_json
 from rfc.runtime.messages import MessageObjects
 from rfc.runtime.shaping import Shaper
 from rfc.runtime.software import Function, SoftwareAccelerator

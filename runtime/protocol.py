@@ -19,6 +19,7 @@ import struct
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 from enum import IntFlag
+from typing import NoReturn
 
 HEADER = struct.Struct("<HHI")
 HEADER_SIZE = HEADER.size
@@ -159,6 +160,6 @@ class Reassembler:
         """Ids with a message started and not yet ended."""
         return sorted(self._open)
 
-    def _fail(self, reason: str, detail: str) -> None:
+    def _fail(self, reason: str, detail: str) -> NoReturn:
         self.errors[reason] = self.errors.get(reason, 0) + 1
         raise ProtocolError(reason, detail)

@@ -11,7 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from rfc.runtime.errors import RfcError
+from rfc.errors import RfcError
 
 
 @dataclass

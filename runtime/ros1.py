@@ -13,9 +13,9 @@ import argparse
 from collections.abc import Callable, Sequence
 from typing import Any
 
+from rfc.errors import RfcError
 from rfc.runtime.core import Published, QueueConfig
 from rfc.runtime.dma_device import DmaChannels
-from rfc.runtime.errors import RfcError
 from rfc.runtime.node import NodeCore
 from rfc.runtime.plan import RuntimePlan
 

@@ -10,8 +10,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from rfc.runtime.codec import Values, decode, default_values, encode
-from rfc.runtime.layout import Layout
+from rfc.messages.codec import Values, decode, default_values, encode
+from rfc.messages.layout_model import Layout
 
 
 def selects_everything(layout: Layout) -> bool:

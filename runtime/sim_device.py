@@ -24,9 +24,10 @@ import threading
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import NotRequired, TypedDict
 
+from rfc.errors import RfcError
 from rfc.runtime.dma_device import FileDma
-from rfc.runtime.errors import RfcError
 from rfc.runtime.plan import RuntimePlan
 
 #: Seconds GHDL may take to analyse the logic and connect.
@@ -50,7 +51,7 @@ class SimulatedLogic:
 
     channel: FileDma
     connection: socket.socket
-    process: subprocess.Popen
+    process: subprocess.Popen[bytes]
     workdir: Path
     taken: threading.Semaphore = field(default_factory=lambda: threading.Semaphore(0))
 
@@ -69,7 +70,7 @@ class SimulatedLogic:
         listener.bind(address)
         listener.listen(1)
         listener.settimeout(0.5)
-        job.update(socket=address, build_dir=str(workdir / "ghdl"))
+        job["socket"], job["build_dir"] = address, str(workdir / "ghdl")
         log = workdir / "simulation.log"
         with log.open("wb") as output:
             process = subprocess.Popen(
@@ -126,7 +127,17 @@ class SimulatedLogic:
         shutil.rmtree(self.workdir, ignore_errors=True)
 
 
-def _job(plan: RuntimePlan) -> dict:
+class _Job(TypedDict):
+    """What the child process simulates, as JSON on its command line."""
+
+    sources: list[str]
+    top: str
+    clock_mhz: float
+    socket: NotRequired[str]
+    build_dir: NotRequired[str]
+
+
+def _job(plan: RuntimePlan) -> _Job:
     if plan.logic is None:
         raise RfcError(
             "this build holds no logic to simulate (it was built with --no-hardware)",
@@ -152,7 +163,7 @@ def _job(plan: RuntimePlan) -> dict:
     }
 
 
-def _simulate(job: dict) -> None:
+def _simulate(job: _Job) -> None:
     """The child process: build the logic with GHDL and run the bridge until the node leaves."""
     from cocotb_tools.runner import get_runner
 

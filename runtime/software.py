@@ -18,8 +18,8 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 from typing import Any
 
-from rfc.runtime.errors import RfcError
-from rfc.runtime.user_code import running_user_code
+from rfc.errors import RfcError
+from rfc.user_code import running_user_code
 
 Function = Callable[..., Any]
 

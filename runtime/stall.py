@@ -16,8 +16,8 @@ from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
+from rfc.errors import RfcError
 from rfc.runtime.core import Runtime
-from rfc.runtime.errors import RfcError
 from rfc.runtime.protocol import Chunk
 
 #: Default cycles without a completed transfer, while work is pending, that count as a stall.

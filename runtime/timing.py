@@ -17,15 +17,12 @@ import heapq
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
 
 import numpy as np
 
 from rfc.runtime.core import QueueConfig, Runtime
+from rfc.runtime.plan import RuntimePlan
 from rfc.runtime.protocol import HEADER_SIZE
-
-if TYPE_CHECKING:
-    from rfc.lower.runtime_plan import DesignPlan
 
 
 @dataclass(frozen=True)
@@ -76,10 +73,13 @@ def transfer_ns(size: int, bus_width: int, clock_mhz: float, overhead_cycles: in
 
 
 def measure(
-    plan: DesignPlan,
+    plan: RuntimePlan,
     traffic: Sequence[Traffic],
     queues: QueueConfig,
     duration_ns: int,
+    *,
+    bus_width: int,
+    clock_mhz: float,
     overhead_cycles: int = 0,
 ) -> Mapping[str, TopicFigures]:
     """Run the traffic through the runtime and the modelled DMA for `duration_ns`.
@@ -89,12 +89,13 @@ def measure(
         traffic: The arrivals of each subscribed topic.
         queues: The callback queues under test.
         duration_ns: Arrivals up to this time; the queues are then drained.
+        bus_width: Bits of the DMA's bus (the project's).
+        clock_mhz: The logic's clock (the project's).
         overhead_cycles: Fixed cycles added to every transfer (DMA set-up).
 
     Returns:
         Figures per topic.
     """
-    project = plan.design.project
     runtime = Runtime(plan, queues)
     topic_of = {i.block: i.topic for i in plan.inputs}
     subscriber_topic = {c.id: topic_of[c.block] for c in plan.logic_inputs}
@@ -132,7 +133,7 @@ def measure(
             chunk, queued = sent
             start = max(now, dma_free_at)
             dma_free_at = start + transfer_ns(
-                len(chunk.payload), project.bus_width, project.clock_mhz, overhead_cycles
+                len(chunk.payload), bus_width, clock_mhz, overhead_cycles
             )
             in_transfer = (subscriber_topic[chunk.id], queued.queued_at, queued.stamp)
     for ident, counters in runtime.scheduler.counters().items():

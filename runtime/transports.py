@@ -14,8 +14,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from enum import StrEnum
 
+from rfc.errors import RfcError
 from rfc.runtime.dma_device import DmaChannels, FileDma, NoLogic
-from rfc.runtime.errors import RfcError
 from rfc.runtime.plan import RuntimePlan
 
 

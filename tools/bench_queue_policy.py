@@ -131,7 +131,14 @@ def main() -> None:
         )
         print("|---|---|---:|---:|---:|---:|---|")
         for name, queues in POLICIES.items():
-            figures = measure(plan, traffic, queues, int(args.seconds * 1e9))
+            figures = measure(
+                plan,
+                traffic,
+                queues,
+                int(args.seconds * 1e9),
+                bus_width=project.bus_width,
+                clock_mhz=project.clock_mhz,
+            )
             for topic, f in figures.items():
                 ages = " / ".join(f"{f.age_ms(s):.2f}" for s in ("mean", "p95", "max"))
                 counts = f"{f.arrived} | {f.delivered} | {f.dropped} | {f.stale}"

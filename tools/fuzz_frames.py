@@ -33,6 +33,7 @@ import numpy as np
 
 from rfc.messages.codec import FrameError, decode, encode
 from rfc.messages.layout import FieldKind, Layout, flatten
+from rfc.messages.layout_model import PRIMITIVE_DTYPES
 from rfc.messages.limits import Limits
 from rfc.messages.rosbags_adapter import (
     MessageTypes,
@@ -41,7 +42,6 @@ from rfc.messages.rosbags_adapter import (
     read_bag,
     write_bag,
 )
-from rfc.runtime.layout import PRIMITIVE_DTYPES
 
 #: Types with strings, sequences of primitives and of strings, fixed arrays, and none of them.
 MESSAGES = (

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The test command: set up, lint and format check, then the whole suite.
+# The test command: set up, lint, format and type check, then the whole suite.
 # Extra arguments go to pytest (for example: tools/test.sh tests/messages -k codec).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -7,4 +7,5 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
 .venv/bin/ruff check .
 .venv/bin/ruff format --check .
+.venv/bin/python tools/typecheck.py
 exec .venv/bin/pytest -n "${RFC_TEST_JOBS:-auto}" --durations=25 "$@"

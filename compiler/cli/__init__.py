@@ -5,6 +5,8 @@ Each command's module is imported only when that command runs, so that `rfc --he
 
 Exit status: 0 success, 1 an error in the user's input (printed as one message, no traceback),
 2 bad usage (typer's own handling).
+
+Layer: the top one; it may import every package of rfc (docs/architecture.md).
 """
 
 from __future__ import annotations

@@ -12,7 +12,7 @@ import json
 import sys
 from dataclasses import replace
 from pathlib import Path
-from typing import Annotated, Any
+from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 from rich.console import Console
@@ -20,6 +20,9 @@ from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
 from rfc.errors import RfcError
+
+if TYPE_CHECKING:
+    from rfc.dse.sweep import SweepResult
 
 dse_app = typer.Typer()
 
@@ -155,7 +158,16 @@ def dse(
 
 
 def _sweep(
-    sizes, dataset, replicates, jobs, output, as_json, verify, synthesis, seed, cluster
+    sizes: tuple[int, ...],
+    dataset: str | None,
+    replicates: int | None,
+    jobs: int,
+    output: Path,
+    as_json: bool,
+    verify: bool,
+    synthesis: bool,
+    seed: int,
+    cluster: str | None,
 ) -> None:
     from rfc.dse.datasets import DATASETS
     from rfc.dse.datasets import dataset as find_dataset
@@ -251,7 +263,7 @@ _SHOWN = (
 )
 
 
-def _print_sweep(result, console: Console) -> None:
+def _print_sweep(result: SweepResult, console: Console) -> None:
     for name in result.plan.datasets:
         table = Table(title=f"dataset {name}: mean ±95 % CI over replicates (cycles)")
         table.add_column("scheduler")
@@ -273,12 +285,14 @@ def _project(
     from rfc.driver import compile_spec
     from rfc.dse.objective import DEFAULT_OBJECTIVE, parse_objective
     from rfc.dse.output import recommendation_document, write_recommendation
-    from rfc.dse.project import recommend
+    from rfc.dse.project import project_traffic, recommend
     from rfc.passes.pipeline import MODEL_PIPELINE
 
     criteria = parse_objective(objective or ",".join(DEFAULT_OBJECTIVE))
     # the publishers' traffic is the model's: accelerators still being written do not matter
     design = compile_spec(str(spec), pipeline=MODEL_PIPELINE)
+    assert design.infrastructure is not None  # the model pipeline derives it
+    traffic = project_traffic(design.project.name, design.infrastructure.scheduler.inputs, horizon)
     _compile_kernels()
     console = Console(stderr=True, highlight=False)
     with Progress(
@@ -292,9 +306,8 @@ def _project(
     ) as bar:
         task = bar.add_task("candidates", total=None)
         recommendation = recommend(
-            design,
+            traffic,
             criteria,
-            horizon=horizon,
             progress=lambda done, total: bar.update(task, completed=done, total=total),
         )
     report = recommendation_document(design.project.name, recommendation)
@@ -304,7 +317,6 @@ def _project(
         print(json.dumps(report, indent=1))
         return
     console = Console(highlight=False)
-    traffic = recommendation.traffic
     console.print(
         f"[bold]{design.project.name}[/]: {traffic.n} publishers, {traffic.cycles} cycles "
         f"simulated ({min(traffic.messages)} to {max(traffic.messages)} messages each); "

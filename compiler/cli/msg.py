@@ -14,8 +14,8 @@ from rich.table import Table
 
 from rfc.cli.notes import note_skipped, note_skipped_topics
 from rfc.errors import RfcError
+from rfc.files.directory import kept_in
 from rfc.lib.converters.loopback_run import LoopbackReport, loopback
-from rfc.lower.writer import kept_in
 from rfc.messages.layout import Layout, LayoutField, flatten
 from rfc.messages.rosbags_adapter import Middleware, message_types
 from rfc.messages.selection import select

@@ -13,6 +13,7 @@ from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, T
 from rich.table import Table
 
 from rfc.errors import RfcError
+from rfc.files.directory import replace_directory
 from rfc.lib.schedulers.generate import (
     critical_path,
     entity_name,
@@ -26,7 +27,6 @@ from rfc.lib.schedulers.spec import (
     SchedulerSpec,
     parse_scheduler,
 )
-from rfc.lower.writer import replace_directory
 
 sched_app = typer.Typer(help="Generate and measure the hardware schedulers.", no_args_is_help=True)
 

@@ -104,12 +104,12 @@ class Traffic:
     @property
     def replicates(self) -> int:
         """R."""
-        return self.transfer.shape[0]
+        return int(self.transfer.shape[0])
 
     @property
     def n(self) -> int:
         """N."""
-        return self.transfer.shape[1]
+        return int(self.transfer.shape[1])
 
 
 def draw(data: Dataset, n: int, replicates: int, seed: int = 0) -> Traffic:

@@ -20,6 +20,7 @@ import numpy.typing as npt
 from rfc.dse.datasets import Traffic
 from rfc.dse.kernel import run_replicates
 from rfc.lib.schedulers.model import compose_models, make_model
+from rfc.lib.schedulers.model.scheduler import SchedulerModel
 from rfc.lib.schedulers.model.tree import SchedulerTree
 from rfc.lib.schedulers.spec import (
     AnySchedulerSpec,
@@ -28,6 +29,9 @@ from rfc.lib.schedulers.spec import (
     default_counter_bits,
     parse_scheduler,
 )
+
+#: A point of a sweep: (dataset, scheduler, N).
+PointKey = tuple[str, str, int]
 
 #: Replicates per task handed to a worker process.
 CHUNK = 25
@@ -53,7 +57,7 @@ def structure(scheduler: str, n: int) -> AnySchedulerSpec:
 def build_tree(shape: AnySchedulerSpec, traffic: Traffic, bits: int) -> SchedulerTree:
     """The scheduler `shape` with the per-replicate timing of `traffic` and `bits`-wide counters."""
 
-    def model(part: AnySchedulerSpec, start: int):
+    def model(part: AnySchedulerSpec, start: int) -> SchedulerModel:
         if isinstance(part, SchedulerSpec):
             stop = start + part.n
             return make_model(
@@ -71,7 +75,8 @@ def build_tree(shape: AnySchedulerSpec, traffic: Traffic, bits: int) -> Schedule
         ]
         return compose_models(part.parent.algorithm, children, counter_bits=bits)
 
-    return model(shape, 0).tree
+    tree: SchedulerTree = model(shape, 0).tree
+    return tree
 
 
 def simulate(scheduler: str, traffic: Traffic, cycles: int) -> npt.NDArray[np.float64]:
@@ -85,7 +90,7 @@ def simulate(scheduler: str, traffic: Traffic, cycles: int) -> npt.NDArray[np.fl
 class Task:
     """A chunk of one point's replicates: `key` names the point, `part` orders its chunks."""
 
-    key: tuple
+    key: PointKey
     part: int
     scheduler: str
     traffic: Traffic
@@ -101,7 +106,7 @@ def _run(task: Task) -> npt.NDArray[np.float64]:
     return simulate(task.scheduler, task.traffic, task.cycles)
 
 
-def chunks(key: tuple, scheduler: str, traffic: Traffic, cycles: int) -> list[Task]:
+def chunks(key: PointKey, scheduler: str, traffic: Traffic, cycles: int) -> list[Task]:
     """Split a point into tasks of at most `CHUNK` replicates."""
     tasks = []
     for part, start in enumerate(range(0, traffic.replicates, CHUNK)):
@@ -116,7 +121,7 @@ def run_tasks(
     jobs: int,
     advance: Callable[[float], None] | None = None,
     cluster: str | None = None,
-) -> dict[tuple, npt.NDArray[np.float64]]:
+) -> dict[PointKey, npt.NDArray[np.float64]]:
     """Run tasks on `jobs` processes and join each point's rows in replicate order.
 
     Args:
@@ -131,7 +136,7 @@ def run_tasks(
     if cluster is not None:
         return _on_cluster(tasks, cluster, advance)
     total = sum(task.work for task in tasks) or 1.0
-    rows: dict[tuple, dict[int, npt.NDArray[np.float64]]] = {task.key: {} for task in tasks}
+    rows: dict[PointKey, dict[int, npt.NDArray[np.float64]]] = {task.key: {} for task in tasks}
 
     def finished(task: Task, result: npt.NDArray[np.float64]) -> None:
         rows[task.key][task.part] = result
@@ -160,7 +165,7 @@ def compile_kernels() -> None:
 class TasksFailedError(Exception):
     """Tasks that raised on a cluster, and the points whose tasks all completed."""
 
-    def __init__(self, failures: list[str], rows: dict[tuple, npt.NDArray[np.float64]]) -> None:
+    def __init__(self, failures: list[str], rows: dict[PointKey, npt.NDArray[np.float64]]) -> None:
         super().__init__("; ".join(failures))
         self.failures = failures
         self.rows = rows
@@ -176,7 +181,7 @@ def describe(task: Task) -> str:
 
 def _on_cluster(
     tasks: Sequence[Task], address: str, advance: Callable[[float], None] | None
-) -> dict[tuple, npt.NDArray[np.float64]]:
+) -> dict[PointKey, npt.NDArray[np.float64]]:
     from rfc.cluster import run_jobs
 
     total = sum(task.work for task in tasks) or 1.0
@@ -187,9 +192,9 @@ def _on_cluster(
 
     results, failures = run_jobs(_run, tasks, describe, address=address, finished=finished)
     failed = {task.key for task, result in zip(tasks, results, strict=True) if result is None}
-    rows: dict[tuple, dict[int, npt.NDArray[np.float64]]] = {}
+    rows: dict[PointKey, dict[int, npt.NDArray[np.float64]]] = {}
     for task, result in zip(tasks, results, strict=True):
-        if task.key not in failed:
+        if task.key not in failed and result is not None:
             rows.setdefault(task.key, {})[task.part] = result
     joined = {key: np.concatenate([p[i] for i in sorted(p)]) for key, p in rows.items()}
     if failures:

@@ -14,7 +14,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from rfc.dse.tables import document, resources_csv, results_csv, table3_markdown
-from rfc.lower.writer import replace_directory
+from rfc.files.directory import replace_directory
 
 if TYPE_CHECKING:  # the GHDL verification and the project's ranking load only when used
     from rfc.dse.objective import Candidate

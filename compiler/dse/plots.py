@@ -19,6 +19,7 @@ import matplotlib
 matplotlib.use("Agg")
 
 import matplotlib.pyplot as plt
+from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from rfc.dse.sweep import ALGORITHMS, COMBINATIONS, SweepResult
@@ -52,10 +53,10 @@ def corner_datasets(result: SweepResult) -> list[str]:
     return corners or [main_dataset(result)]
 
 
-def _lines(axis, result: SweepResult, name: str, metric: str, label: str) -> None:
+def _lines(axis: Axes, result: SweepResult, name: str, metric: str, label: str) -> None:
     for algorithm in ALGORITHMS:
-        points = [result.point(name, algorithm, n) for n in result.plan.sizes]
-        points = [p for p in points if p is not None]
+        found = (result.point(name, algorithm, n) for n in result.plan.sizes)
+        points = [p for p in found if p is not None]
         summaries = [p.summary(metric) for p in points]
         axis.errorbar(
             [p.n for p in points],
@@ -73,7 +74,7 @@ def _lines(axis, result: SweepResult, name: str, metric: str, label: str) -> Non
     axis.grid(True, alpha=0.3)
 
 
-def _figure(panels: int, columns: int = 2) -> tuple[Figure, list]:
+def _figure(panels: int, columns: int = 2) -> tuple[Figure, list[Axes]]:
     rows = (panels + columns - 1) // columns
     width = 5.2 * min(panels, columns)
     figure, axes = plt.subplots(rows, min(panels, columns), figsize=(width, 3.8 * rows))
@@ -157,8 +158,8 @@ def figure14(result: SweepResult) -> Figure:
     name = main_dataset(result)
     n = max(result.plan.sizes)
     names = ["LOEDF", "LST", *COMBINATIONS]
-    shown = [(s, result.point(name, s, n)) for s in names]
-    shown = [(s, p) for s, p in shown if p is not None]
+    found = ((s, result.point(name, s, n)) for s in names)
+    shown = [(s, p) for s, p in found if p is not None]
     granted = [p.summary("granted") for _, p in shown]
     completed = [p.summary("completed") for _, p in shown]
     positions = range(len(shown))

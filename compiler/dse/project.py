@@ -15,6 +15,7 @@ from __future__ import annotations
 import itertools
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import Protocol
 
 import numpy as np
 
@@ -22,7 +23,6 @@ from rfc.dse.kernel import METRICS, run_replicates
 from rfc.dse.objective import Candidate, Criterion, rank, reasons
 from rfc.dse.sweep import ALGORITHMS
 from rfc.errors import RfcError
-from rfc.ir.model import Design
 from rfc.lib.schedulers.model import tree_of
 from rfc.lib.schedulers.spec import AnySchedulerSpec, parse_scheduler
 
@@ -31,6 +31,33 @@ MIN_CYCLES = 10_000
 #: Messages the slowest publisher sends within the simulated horizon (at least `MIN_CYCLES`),
 #: so that every task set is ranked on enough messages whatever its periods.
 MESSAGES_RANKED = 10
+
+
+class PublisherTiming(Protocol):
+    """What the DSE reads of one scheduler input (`rfc.ir.infrastructure.SchedulerInput`).
+
+    The DSE sits below the IR: it takes the scheduler's inputs as plain values, not the model.
+    """
+
+    @property
+    def publisher(self) -> str:
+        """The publisher block."""
+        ...
+
+    @property
+    def transfer_beats(self) -> int:
+        """Beats of one transfer, chunk header included."""
+        ...
+
+    @property
+    def period(self) -> int | None:
+        """Clock cycles between messages, when given."""
+        ...
+
+    @property
+    def deadline(self) -> int | None:
+        """Relative deadline in clock cycles, when given (implicit: the period)."""
+        ...
 
 
 @dataclass(frozen=True)
@@ -67,35 +94,45 @@ class ProjectTraffic:
         return tuple(-(-self.cycles // period) for period in self.period)
 
 
-def project_traffic(design: Design, horizon: int | None = None) -> ProjectTraffic:
-    """The publishers' timing from the holistic model, simulated for `horizon` cycles if given.
+def project_traffic(
+    project: str, inputs: Sequence[PublisherTiming], horizon: int | None = None
+) -> ProjectTraffic:
+    """The publishers' timing, simulated for `horizon` cycles if given.
+
+    Args:
+        project: The project's name, for messages.
+        inputs: The scheduler's inputs in the holistic model, in input order.
+        horizon: Cycles to simulate (default: `MESSAGES_RANKED` periods of the slowest).
 
     Raises:
         RfcError: A publisher has no period (the DSE cannot simulate it), or none exists.
     """
-    inputs = design.infrastructure.scheduler.inputs
     if not inputs:
-        raise RfcError(f"project '{design.project.name}' has no publisher in the logic to schedule")
+        raise RfcError(f"project '{project}' has no publisher in the logic to schedule")
     missing = [i.publisher for i in inputs if i.period is None]
     if missing:
         raise RfcError(
             f"publisher{'s' if len(missing) > 1 else ''} {', '.join(missing)} of project "
-            f"'{design.project.name}' {'have' if len(missing) > 1 else 'has'} no period; "
+            f"'{project}' {'have' if len(missing) > 1 else 'has'} no period; "
             "rfc dse needs the period (and optionally the deadline) of every publisher",
             hint="add 'period: 100 us' (and 'deadline: ...') to each publisher block",
         )
-    for i in inputs:
-        if i.period < i.transfer_beats:
+    periods = [int(i.period) for i in inputs if i.period is not None]  # all, checked above
+    for i, period in zip(inputs, periods, strict=True):
+        if period < i.transfer_beats:
             raise RfcError(
-                f"publisher {i.publisher} sends {i.transfer_beats} beats every {i.period} cycles: "
+                f"publisher {i.publisher} sends {i.transfer_beats} beats every {period} cycles: "
                 "its own messages already overload the channel",
                 hint="lengthen its period or widen the bus",
             )
     return ProjectTraffic(
         tuple(i.publisher for i in inputs),
         tuple(i.transfer_beats for i in inputs),
-        tuple(int(i.period) for i in inputs),
-        tuple(int(i.deadline if i.deadline is not None else i.period) for i in inputs),
+        tuple(periods),
+        tuple(
+            int(i.deadline) if i.deadline is not None else period
+            for i, period in zip(inputs, periods, strict=True)
+        ),
         horizon,
     )
 
@@ -151,26 +188,21 @@ def _resources(traffic: ProjectTraffic) -> Callable[[Candidate], dict[str, int]]
 
 
 def recommend(
-    design: Design,
+    traffic: ProjectTraffic,
     objective: Sequence[Criterion],
     names: Sequence[str] | None = None,
     *,
-    horizon: int | None = None,
     progress: Callable[[int, int], None] | None = None,
 ) -> Recommendation:
     """Rank `names` (default `candidates`) for the project's publishers by `objective`.
 
     Args:
-        design: The holistic model.
+        traffic: The project's publishers (`project_traffic`).
         objective: The ranking criteria, most important first.
         names: The schedulers to rank.
-        horizon: Cycles to simulate (default: `MESSAGES_RANKED` periods of the slowest).
         progress: Called with (candidates simulated, candidates) as the simulation goes.
 
-    Raises:
-        RfcError: A publisher lacks the timing the simulation needs.
     """
-    traffic = project_traffic(design, horizon)
     chosen = list(names or candidates(traffic.n))
     evaluated = []
     for name in chosen:

@@ -71,7 +71,7 @@ class Point:
     @property
     def replicates(self) -> int:
         """R."""
-        return self.rows.shape[0]
+        return int(self.rows.shape[0])
 
     def summary(self, metric: str) -> Summary:
         """Mean and 95 % confidence interval of `metric` over the replicates."""
@@ -132,7 +132,7 @@ def _traffic(plan: Plan) -> dict[tuple[str, int], tuple[Traffic, int]]:
     return traffic
 
 
-def tasks_of(plan: Plan) -> tuple[list[Task], dict[tuple, tuple[int, int]]]:
+def tasks_of(plan: Plan) -> tuple[list[Task], dict[tuple[str, str, int], tuple[int, int]]]:
     """The tasks of a plan and, per point key, its (cycles, counter bits)."""
     tasks, info = [], {}
     traffic = _traffic(plan)

@@ -80,7 +80,7 @@ def record(
         cycles: Cycles to record.
         ready: Draws the channel's `ready` each cycle (None: always ready).
     """
-    rows: dict[str, list] = {"request": [], "last": [], "ready": [], "grant": []}
+    rows: dict[str, list[int]] = {"request": [], "last": [], "ready": [], "grant": []}
     for _ in range(cycles):
         request, last = publishers.request, publishers.last
         accepts = np.array([True if ready is None else ready()])

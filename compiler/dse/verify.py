@@ -130,6 +130,8 @@ def _check(result: SweepResult, algorithm: str, name: str, n: int, scratch: Path
         grants = replay_in_ghdl(spec, trace, scratch)
     except CosimError as error:
         return Check(algorithm, name, n, point.cycles, expected, None, str(error))
+    if grants is None:
+        return Check(algorithm, name, n, point.cycles, expected, None, "GHDL recorded no grant")
     measured = measure(trace.request, trace.last, grants, traffic.deadline[0])
     return Check(algorithm, name, n, point.cycles, expected, tuple(float(v) for v in measured))
 

@@ -7,8 +7,11 @@ tcl, the runtime's configuration...), write one such function in its own module 
 their lines; only then does `rfc.lower.writer` put anything on disk, so an error leaves nothing
 half-written.
 
-`lower` and `LOWERINGS` are imported on first use, so that `rfc.lower.writer` alone (the DSE
-writes its results with it) does not import every generator of the logic.
+`lower` and `LOWERINGS` are imported on first use, so that one module of the package
+(`rfc.lower.writer`, say) does not import every generator of the logic.
+
+Layer: below the driver; it may import `rfc.passes` and every layer under it, never the driver,
+the wizard or the command line.
 """
 
 from __future__ import annotations

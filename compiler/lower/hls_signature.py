@@ -19,6 +19,7 @@ parser; anything it does not understand is an error that names the line.
 from __future__ import annotations
 
 import re
+from collections.abc import Iterator
 from dataclasses import dataclass
 from enum import StrEnum
 from pathlib import Path
@@ -100,7 +101,7 @@ def read_top_function(sources: list[Path], top: str) -> tuple[HlsArgument, ...]:
     )
 
 
-def _arguments(path: Path, text: str, start: int, params: str):
+def _arguments(path: Path, text: str, start: int, params: str) -> Iterator[HlsArgument]:
     offset = start
     for raw in params.split(","):
         location = _location(path, text, offset + len(raw) - len(raw.lstrip()))

@@ -383,7 +383,7 @@ def _definitions(struct: MessageStruct) -> list[str]:
     return lines + _struct(struct.port, _tree(struct.fields))
 
 
-def _tree(fields: tuple[CField, ...]) -> dict[str, Any]:
+def _tree(fields: tuple[CField, ...]) -> dict[str | int, Any]:
     """Nest fields by member: dicts for structs, dicts keyed by int for arrays."""
     root: dict[str | int, Any] = {}
     for field in fields:

@@ -287,8 +287,8 @@ class Netlist:
                 f"  {instance.label} : {unit if instance.entity.vlnv else 'entity work.' + unit}"
             )
             if instance.generics:
-                maps = ", ".join(f"{k} => {v}" for k, v in instance.generics.items())
-                lines.append(f"    generic map ({maps})")
+                generics = ", ".join(f"{k} => {v}" for k, v in instance.generics.items())
+                lines.append(f"    generic map ({generics})")
             lines.append("    port map (")
             maps = [
                 f"      {name} => {'open' if net is None else net.text}"
@@ -320,8 +320,8 @@ class Netlist:
         for instance in self._instances:
             lines += ["", f"  {_verilog_identifier(instance.entity.name)}"]
             if instance.generics:
-                maps = ", ".join(f".{k}({v})" for k, v in instance.generics.items())
-                lines.append(f"    #({maps})")
+                generics = ", ".join(f".{k}({v})" for k, v in instance.generics.items())
+                lines.append(f"    #({generics})")
             lines.append(f"    {_verilog_identifier(instance.label)} (")
             maps = [
                 f"      .{_verilog_identifier(name)}({'' if net is None else net.verilog})"

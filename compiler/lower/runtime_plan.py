@@ -18,9 +18,9 @@ from rfc.errors import RfcError
 from rfc.ir.infrastructure import CHUNK_HEADER_BYTES, Converter
 from rfc.ir.model import AcceleratorType, BlockKind, Connection, Design
 from rfc.messages.layout import Layout, flatten
+from rfc.messages.layout_model import layout_to_json
+from rfc.messages.limits import limits_to_json
 from rfc.passes.base import types_of
-from rfc.runtime.layout import layout_to_json
-from rfc.runtime.limits import limits_to_json
 from rfc.runtime.plan import PLAN_FORMAT, RuntimePlan
 from rfc.runtime.software import Function
 from rfc.spec.python_sources import function_in
@@ -209,8 +209,8 @@ class _Planner:
             return [self._to_topic(block.name, block.topic or "", layout)]
         routes = []
         for target in converter.crossing.software:
-            block, _, port = target.partition(".")
-            routes.append(self._to_software(block, port))
+            software_block, _, port = target.partition(".")
+            routes.append(self._to_software(software_block, port))
         return routes
 
     def _routes_from(

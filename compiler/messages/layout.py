@@ -12,8 +12,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from rfc.messages.rosbags_adapter import PRIMITIVE_SIZES, FieldDef, MessageTypes, Middleware
-from rfc.runtime.layout import (
+from rfc.messages.layout_model import (
     CDR_HEADER_SIZE,
     LENGTH_PREFIX_SIZE,
     FieldKind,
@@ -21,8 +20,9 @@ from rfc.runtime.layout import (
     LayoutField,
     format_path,
 )
+from rfc.messages.rosbags_adapter import PRIMITIVE_SIZES, FieldDef, MessageTypes, Middleware
 
-__all__ = [  # the data model lives in the runtime, which ships without the compiler
+__all__ = [  # the data model lives in rfc.messages.layout_model, which the runtime reads too
     "CDR_HEADER_SIZE",
     "LENGTH_PREFIX_SIZE",
     "FieldKind",
@@ -57,7 +57,8 @@ def flatten(types: MessageTypes, type_name: str) -> Layout:
     key = ("layout", canonical)
     if key not in types.cache:
         types.cache[key] = _Flattener(types).layout(canonical, is_element=False)
-    return types.cache[key]
+    layout: Layout = types.cache[key]
+    return layout
 
 
 class _Flattener:
@@ -120,14 +121,17 @@ class _Flattener:
         kind: FieldKind,
         element_type: str,
         bound: int,
-        **extra: object,
+        string_bound: int = 0,
+        element: Layout | None = None,
     ) -> LayoutField:
         align = LENGTH_PREFIX_SIZE if self.cdr else 1
         offset = None
         if self.position is not None:
             offset = self._frame_offset(-(-self.position // align) * align)
             self.position = None
-        return LayoutField(steps, ros_type, kind, element_type, align, offset, bound, **extra)
+        return LayoutField(
+            steps, ros_type, kind, element_type, align, offset, bound, string_bound, element
+        )
 
     def _sequence(self, definition: FieldDef, steps: tuple[str | int, ...]) -> LayoutField:
         element = None
@@ -155,4 +159,5 @@ def flatten_element(types: MessageTypes, canonical: str) -> Layout:
     key = ("element", canonical)
     if key not in types.cache:
         types.cache[key] = _Flattener(types).layout(canonical, is_element=True)
-    return types.cache[key]
+    layout: Layout = types.cache[key]
+    return layout

@@ -38,10 +38,10 @@ from rosbags.typesys.store import Typestore
 
 from rfc.errors import RfcError, closest, did_you_mean
 
-# The runtime owns these (it ships without the compiler); re-exported for the compiler.
-from rfc.runtime.layout import PRIMITIVE_DTYPES as PRIMITIVE_DTYPES
-from rfc.runtime.layout import PRIMITIVE_SIZES as PRIMITIVE_SIZES
-from rfc.runtime.layout import Middleware as Middleware
+# The layout's data model owns these (the runtime reads it too); re-exported for the front-end.
+from rfc.messages.layout_model import PRIMITIVE_DTYPES as PRIMITIVE_DTYPES
+from rfc.messages.layout_model import PRIMITIVE_SIZES as PRIMITIVE_SIZES
+from rfc.messages.layout_model import Middleware as Middleware
 
 DEFAULT_DISTRO = {Middleware.ROS1: "noetic", Middleware.ROS2: "humble"}
 DISTROS = {

@@ -73,7 +73,10 @@ class CheckHardware:
         ):
             for converter in converters:
                 location = locations.get(converter.block, design.project.location)
-                chosen = located(lambda c=converter: converter_plan(c, limits), location)
+                chosen = located(
+                    lambda c=converter: converter_plan(c, limits, record_first(design, c)),
+                    location,
+                )
                 if side is Side.PUBLISHER and (held := buffers_of(chosen)):
                     buffers[converter.block] = held
                 if side is Side.SUBSCRIBER and (
@@ -108,9 +111,40 @@ def located(make: Any, location: SourceLocation) -> Any:
         raise RfcError(exc.message, location=location, hint=exc.hint) from None
 
 
-def converter_plan(converter: Converter, limits: Limits) -> Plan:
-    """The plan of a converter of the model (its names checked)."""
-    return plan(converter.layout, converter.bus_width, limits)
+def converter_plan(converter: Converter, limits: Limits, record_first: bool = False) -> Plan:
+    """The plan of a converter of the model (its names checked).
+
+    `record_first`: a publisher's producer gives the record by its last stream's first beat.
+    """
+    return replace(plan(converter.layout, converter.bus_width, limits), record_first=record_first)
+
+
+def record_first(design: Design, converter: Converter) -> bool:
+    """Whether a publisher's producer is record-first: a MyHDL accelerator (its contract).
+
+    A MyHDL block sets every field and length of an output message by the first beat of the
+    message's last stream (docs/accelerators.md); HLS cores may set a length after writing
+    the stream, and VHDL entities promise nothing, so their publishers buffer every stream.
+    """
+    infrastructure = design.infrastructure
+    assert infrastructure is not None
+    if converter.crossing is not None:
+        producer = converter.crossing.hardware.split(".")[0]
+    else:
+        producer = next(
+            (
+                c.source.block
+                for c in infrastructure.hardware_connections
+                if c.destination.block == converter.block
+            ),
+            None,
+        )
+    if producer is None or producer not in {b.name for b in design.blocks}:
+        return False
+    block = design.block(producer)
+    if block.kind is not BlockKind.ACCELERATOR or block.name in infrastructure.software:
+        return False
+    return design.accelerator(block.accelerator or "").kind is AcceleratorKind.MYHDL
 
 
 def accelerator_signatures(block: Block, width: int, limits: Limits) -> dict[str, tuple[Port, ...]]:

@@ -37,9 +37,10 @@ class ResolveScheduler:
         inputs = scheduler.inputs
         if len(inputs) >= 2 and all(i.period is not None for i in inputs):
             from rfc.dse.objective import parse_objective
-            from rfc.dse.project import recommend
+            from rfc.dse.project import project_traffic, recommend
 
-            recommendation = recommend(design, parse_objective(self.objective))
+            traffic = project_traffic(design.project.name, inputs)
+            recommendation = recommend(traffic, parse_objective(self.objective))
             algorithm = recommendation.scheduler
             reason = "rfc dse: " + "; ".join(recommendation.reasons)
         elif len(inputs) <= 1:

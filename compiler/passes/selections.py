@@ -20,7 +20,8 @@ def carried_fields(
     key = ("carried", message, include, exclude)
     if key not in types.cache:
         types.cache[key] = tuple(selected_paths(select(flatten(types, message), include, exclude)))
-    return types.cache[key]
+    paths: tuple[str, ...] = types.cache[key]
+    return paths
 
 
 def layout_selecting(types: MessageTypes, message: str, paths: frozenset[str]) -> Layout:
@@ -28,4 +29,5 @@ def layout_selecting(types: MessageTypes, message: str, paths: frozenset[str]) -
     key = ("selecting", message, paths)
     if key not in types.cache:
         types.cache[key] = with_selection(flatten(types, message), paths)
-    return types.cache[key]
+    layout: Layout = types.cache[key]
+    return layout

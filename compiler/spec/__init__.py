@@ -1,4 +1,7 @@
-"""Front-ends: a YAML or Python system specification becomes a `Design` (stage PARSED)."""
+"""Front-ends: a YAML or Python system specification becomes a `Design` (stage PARSED).
+
+Layer: below the passes; it may import `rfc.ir` and the layers under it.
+"""
 
 from __future__ import annotations
 

@@ -265,23 +265,27 @@ def maxima(
         given: ``string``, ``sequence`` and ``frame`` as written, with their locations.
         fields: Per-field maxima by path, with their locations.
     """
-    for what, (value, location) in given.items():
-        _count(value, f"maxima '{what}'", 1 if what == "frame" else 0, location)
-    for path, (value, location) in fields.items():
-        _count(value, f"maximum of '{path}'", 0, location)
+    chosen = {
+        what: _count(value, f"maxima '{what}'", 1 if what == "frame" else 0, location)
+        for what, (value, location) in given.items()
+    }
+    per_field = {
+        path: _count(value, f"maximum of '{path}'", 0, location)
+        for path, (value, location) in fields.items()
+    }
     default = Limits()
-    chosen = {key: int(value) for key, (value, _) in given.items()}
     return Limits(
         string=chosen.get("string", default.string),
         sequence=chosen.get("sequence", default.sequence),
         frame=chosen.get("frame", default.frame),
-        fields={path: int(value) for path, (value, _) in fields.items()},
+        fields=per_field,
     )
 
 
-def _count(value: object, what: str, lowest: int, location: SourceLocation) -> None:
+def _count(value: object, what: str, lowest: int, location: SourceLocation) -> int:
     if isinstance(value, bool) or not isinstance(value, int) or not lowest <= value < MAX_LENGTH:
         raise RfcError(
             f"{what} must be an integer from {lowest} to {MAX_LENGTH - 1}, not {value!r}",
             location=location,
         )
+    return value

@@ -14,8 +14,8 @@ from pathlib import Path
 
 from rfc.errors import RfcError, SourceLocation
 from rfc.ir.model import Design
-from rfc.runtime.user_code import running_user_code
 from rfc.spec.python_project import Project
+from rfc.user_code import running_user_code
 
 
 def load_python_spec(path: Path, display: str | None = None) -> Design:

@@ -9,15 +9,18 @@ from __future__ import annotations
 
 import importlib.util
 import sys
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
 from rfc.errors import RfcError
 from rfc.ir.model import AcceleratorType
-from rfc.runtime.user_code import running_user_code
+from rfc.user_code import running_user_code
 
 
-def function_in(path: Path, name: str, accelerator: AcceleratorType, role: str) -> Any:
+def function_in(
+    path: Path, name: str, accelerator: AcceleratorType, role: str
+) -> Callable[..., Any]:
     """The callable `name` defined in `path`.
 
     Args:
@@ -30,7 +33,7 @@ def function_in(path: Path, name: str, accelerator: AcceleratorType, role: str) 
         RfcError: The file fails to import or defines no such callable.
     """
     module = import_file(path, accelerator)
-    function = getattr(module, name, None)
+    function: object = getattr(module, name, None)
     if not callable(function):
         raise RfcError(
             f"'{path.name}' defines no function '{name}' for {role} '{accelerator.name}'",

@@ -111,7 +111,8 @@ def load_yaml(path: Path, display: str) -> YamlNode:
 def _compose_pure(text: str, display: str) -> Node | None:
     """Parse with ruamel's pure-Python parser, turning its error into an `RfcError`."""
     try:
-        return YAML(typ="safe", pure=True).compose(text)
+        node: Node | None = YAML(typ="safe", pure=True).compose(text)
+        return node
     except MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         where = SourceLocation(display, mark.line + 1, mark.column + 1) if mark else None
@@ -161,11 +162,11 @@ class MappingReader:
                 )
             expect_kind(value, section.key(name).kinds, f"'{name}' of {self.owner}")
             self.keys[name], self.values[name] = key, value
-        for key in section.keys:
-            if key.required and key.name not in self.values:
+        for expected in section.keys:
+            if expected.required and expected.name not in self.values:
                 raise RfcError(
-                    f"{self.owner} has no '{key.name}', which is required: "
-                    f"{key.description.rstrip('.')}",
+                    f"{self.owner} has no '{expected.name}', which is required: "
+                    f"{expected.description.rstrip('.')}",
                     location=node.location,
                 )
 

@@ -13,6 +13,7 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 
 from rfc.errors import RfcError, SourceLocation
+from rfc.ir.model import SCHEDULER_ALGORITHMS
 from rfc.messages.rosbags_adapter import MessageTypes, Middleware
 from rfc.messages.selection import validate_pattern
 from rfc.spec import common
@@ -167,7 +168,7 @@ class Session:
             if found is not None:
                 default, reason = found
                 self.prompter.note(f"rfc dse recommends {default}: {reason}")
-        choices = ", ".join(common.SCHEDULER_ALGORITHMS)
+        choices = ", ".join(SCHEDULER_ALGORITHMS)
         return self.prompter.ask(f"Scheduler ({choices})", default, _scheduler)
 
     def _source(self, kind: str) -> Callable[[str, SourceLocation], str]:

@@ -42,17 +42,18 @@ project = rfc.Project(
     bus_width=64,
     clock_mhz=100,
     scheduler="LRU",
-    # the example's images (up to 40 x 40 RGB: 4,800 bytes of data), short names and encodings
-    maxima={"string": 64, "fields": {"data": 4800}},
+    # full-HD RGB frames (1920 x 1080 x 3 bytes of data), short names and encodings; the stages
+    # are record-first, so the publisher streams the pixels through (docs/accelerators.md)
+    maxima={"string": 64, "fields": {"data": 6220800}},
 )
 camera = project.subscriber(
-    "Camera_sub", IMAGE, topic="/camera/image_raw", period="33 ms", max_bytes=5000
+    "Camera_sub", IMAGE, topic="/camera/image_raw", period="33 ms", max_bytes=6221000
 )
 gray = project.accelerator("Gray_acc", RgbToGray)
 small = project.accelerator("Downscale_acc", Downscale)
 integral = project.accelerator("Integral_acc", IntegralImage)
 publisher = project.publisher(
-    "Integral_pub", IMAGE, topic="/camera/integral", period="33 ms", max_bytes=5000
+    "Integral_pub", IMAGE, topic="/camera/integral", period="33 ms", max_bytes=2073800
 )
 
 frame = ["header", "height", "width", "data"]

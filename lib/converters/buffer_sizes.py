@@ -47,7 +47,10 @@ def buffers_of(plan: Plan) -> tuple[Buffer, ...]:
         s.element_channel for s in plan.steps if isinstance(s, Loop) and s.field.element is None
     }
     found = []
-    for step in plan.steps:
+    through = plan.streamed_last
+    for at, step in enumerate(plan.steps):
+        if at == through:
+            continue  # a record-first producer's last stream goes straight through
         if isinstance(step, Payload) and step.stream:
             bits = next(p.bits for p in ports if p.name == f"{step.stream}_tdata")
             beats = -(-step.maximum * step.element_size // (bits // 8))

@@ -12,13 +12,13 @@ from __future__ import annotations
 
 from typing import Any
 
-from myhdl import ConcatSignal, Signal, always_comb, block, intbv
+from myhdl import ConcatSignal, Signal, always_comb, always_seq, block, intbv
 
 from rfc.lib.converters.buffer_sizes import DATA_ROLES, Buffer, buffers_of, element_ports
 from rfc.lib.converters.fifo import fifo
 from rfc.lib.converters.ports import Port, Side, dma_ports, ports_of
 from rfc.lib.converters.publisher import rfc_publisher
-from rfc.lib.converters.steps import Plan
+from rfc.lib.converters.steps import Payload, Plan
 from rfc.lib.converters.toplevel import port_signals
 
 # the sizes are reexported: the system's lowering takes both from here
@@ -102,10 +102,56 @@ def buffered_ports(plan: Plan) -> tuple[Port, ...]:
 
 
 @block
+def occupancy(
+    clk: Any, rst: Any, pushed: Any, in_ready: Any, popped: Any, out_ready: Any, empty: Any,
+    depth: int,
+) -> Any:  # fmt: skip
+    """`empty` while a FIFO of `depth` words holds nothing, counted from both handshakes.
+
+    Exact on the cycle after a push, when the FIFO's own output shows nothing yet.
+    """
+    count = Signal(intbv(0, min=0, max=depth + 4))
+
+    @always_comb
+    def status() -> None:
+        empty.next = count == 0
+
+    @always_seq(clk.posedge, reset=rst)
+    def track() -> None:
+        arriving = pushed and in_ready
+        leaving = popped and out_ready
+        if arriving and not leaving:
+            count.next = count + 1
+        elif leaving and not arriving:
+            count.next = count - 1
+
+    return status, track
+
+
+@block
 def buffered_publisher(plan: Plan, **ports: Any) -> Any:
-    """The publisher of `plan` behind `stream_buffers`; `ports`: `buffered_ports`."""
+    """The publisher of `plan` behind `stream_buffers`; `ports`: `buffered_ports`.
+
+    Behind a record-first producer it also tells the publisher which of the message's own
+    strings' FIFOs are empty, so that a string shorter than its length cannot stall it.
+    """
     clk, rst = ports["clk"], ports["rst"]
-    buffered = {b.channel for b in buffers_of(plan)}
+    buffers = buffers_of(plan)
+    buffered = {b.channel for b in buffers}
     inner = dict(ports)
     inner.update(port_signals([p for p in ports_of(plan, Side.PUBLISHER) if p.group in buffered]))
-    return stream_buffers(plan, clk, rst, ports, inner), rfc_publisher(plan, **inner)
+    blocks = [stream_buffers(plan, clk, rst, ports, inner)]
+    held = {}
+    if plan.streamed_last is not None:
+        top = {s.stream for s in plan.steps if isinstance(s, Payload) and s.channel == 0}
+        for buffer in buffers:
+            name = buffer.channel
+            if name in top:
+                held[name] = Signal(bool(1))
+                blocks.append(
+                    occupancy(clk, rst, ports[f"{name}_tvalid"], ports[f"{name}_tready"],
+                              inner[f"{name}_tvalid"], inner[f"{name}_tready"], held[name],
+                              buffer.words)
+                )  # fmt: skip
+    blocks.append(rfc_publisher(plan, held=held, **inner))
+    return blocks

@@ -170,7 +170,8 @@ def loopback(
 def _messages(
     bag: Path, types: MessageTypes, canonical: str, topic: str | None, count: int | None
 ) -> list[BagMessage]:
-    found, present = [], set()
+    found: list[BagMessage] = []
+    present = set()
     for message in read_bag(bag, types, [topic] if topic else ()):
         name = canonical_name(message.type_name)  # other types need no definition
         present.add(types.display_name(name))

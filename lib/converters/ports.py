@@ -287,7 +287,7 @@ def dma_ports(plan: Plan, side: Side) -> tuple[Port, ...]:
     ]
     if side is Side.PUBLISHER:
         ports.append(Port("frame_length", COUNTER_BITS, Direction.OUT, PortRole.FRAME_LENGTH))
-    if side is Side.SUBSCRIBER or plan.store_and_forward:
+    if side is Side.SUBSCRIBER or plan.store_and_forward or plan.streamed_last is not None:
         ports.append(Port("error_count", COUNTER_BITS, Direction.OUT, PortRole.ERROR_COUNT))
     if side is Side.SUBSCRIBER:
         ports.append(Port("error_reason", REASON_BITS, Direction.OUT, PortRole.ERROR_REASON))

@@ -11,6 +11,14 @@ The frame's length is known before the first beat: folded at compile time for a 
 message, computed by the frame-length circuit (`frame_length`) from the length inputs
 otherwise, and counted through a frame buffer (`frame_buffer`) when the plan is
 store-and-forward. ``frame_length`` holds it from the first beat to the last.
+
+Behind a record-first producer (`Plan.streamed_last`) the frame starts at the first beat of
+the message's last stream, which goes straight through; the message is taken at the end,
+once its ``valid`` says the producer has handed everything over. A stream that ends early is
+padded with zeros to its announced length, beats beyond it are taken and dropped; either
+counts one in ``error_count``. The earlier strings come through FIFOs (`buffers`), whose
+``held`` emptiness tells the same for them: the producer has gone on to the last stream (or
+finished) and a FIFO is empty while its stream still owes beats.
 """
 
 from __future__ import annotations
@@ -66,8 +74,12 @@ def _length_inputs(plan: Plan) -> tuple[list[str], tuple[int, ...]]:
 
 
 @block
-def rfc_publisher(plan: Plan, **ports: Any) -> Any:
-    """The publisher for `plan`; `ports` holds one signal per name of `publisher_ports`."""
+def rfc_publisher(plan: Plan, held: dict[str, Any] | None = None, **ports: Any) -> Any:
+    """The publisher for `plan`; `ports` holds one signal per name of `publisher_ports`.
+
+    `held`: behind a record-first producer, per stream that comes through a FIFO, a signal
+    high while that FIFO holds nothing.
+    """
     t = tables(plan)
     width = plan.width
     # A pad is at most 7 bytes: compare it with a constant its 3 bits hold (8 would read as 0).
@@ -123,6 +135,23 @@ def rfc_publisher(plan: Plan, **ports: Any) -> Any:
     p_valid, p_last = Signal(bool(0)), Signal(bool(0))
     p_ready = Constant(bool(1))  # the frame buffer takes every beat
     busy = Signal(bool(0)) if buffered else Constant(bool(0))
+    through = plan.streamed_last
+    streaming = through is not None
+    through_at = through or 0
+    through_valid = (
+        ports[f"{plan.steps[through].stream}_tvalid"] if streaming else Constant(bool(0))
+    )
+    faulty, faulty_n, drain = (Signal(bool(0)) for _ in range(3))
+    held = held or {}
+    held_table = [0] * len(plan.steps)
+    empties = [Constant(bool(0))]
+    for at, step in enumerate(plan.steps):
+        if isinstance(step, Payload) and step.stream in held:
+            held_table[at] = len(empties)
+            empties.append(held[step.stream])
+    gone = Signal(bool(0)) if held else Constant(bool(0))  # the current step's FIFO is empty
+    leftover = Signal(bool(0)) if held else Constant(bool(0))  # some FIFO still holds beats
+    mismatches = Signal(intbv(0)[COUNTER_BITS:])
 
     channel_valids = [
         ports[f"{c.name}_valid"] if c.index and c.selected else Constant(bool(1))
@@ -174,6 +203,8 @@ def rfc_publisher(plan: Plan, **ports: Any) -> Any:
         next_element.next = False
         stream_take.next = False
         msg_ready.next = False
+        drain.next = False
+        faulty_n.next = faulty
         rc.next = base + chunk
         piece_index.next = payload_base + piece
         step = 0
@@ -185,10 +216,15 @@ def rfc_publisher(plan: Plan, **ports: Any) -> Any:
         count.next = value
 
         running = bool(active)
-        if not active and msg_valid and idle and not busy:
+        if not active and (msg_valid or through_valid) and idle and not busy:
             start.next = True
             active_n.next = True
+            faulty_n.next = False
             running = True
+        # the producer is done while the streamed-through stream still owes bytes
+        finished = msg_valid and pc == through_at
+        moved_on = gone and (msg_valid or through_valid)
+        ended = streaming and (finished or moved_on) and not stream_valid
         if running and owner_valid:
             if kind == Kind.RECORD:
                 if chunk == 0 and pad != 0:
@@ -234,17 +270,19 @@ def rfc_publisher(plan: Plan, **ports: Any) -> Any:
                     chars = step
                     if term == 1 and rem <= width:
                         chars = step - 1
-                    if room and (chars == 0 or stream_valid):
+                    if room and (chars == 0 or stream_valid or ended):
                         give.next = step
                         rem_n.next = rem - step
+                        if ended and chars > 0:
+                            faulty_n.next = True
                         if piece == parts - 1 or rem <= width:
                             piece_n.next = 0
-                            stream_take.next = chars > 0
+                            stream_take.next = chars > 0 and not ended
                         else:
                             piece_n.next = piece + 1
                         masked = intbv(0)[8 * width :]
                         for lane in range(width):
-                            if lane < chars:
+                            if lane < chars and not ended:
                                 nonzero = False
                                 for bit in range(8):
                                     if payload_bytes[8 * lane + bit]:
@@ -269,6 +307,14 @@ def rfc_publisher(plan: Plan, **ports: Any) -> Any:
                     pc_n.next = target
                 else:
                     pc_n.next = pc + 1
+            elif streaming:
+                if through_valid or leftover:  # beats beyond the announced length
+                    drain.next = True
+                    faulty_n.next = True
+                elif msg_valid:
+                    msg_ready.next = True
+                    pc_n.next = 0
+                    active_n.next = False
             elif not buffered:
                 msg_ready.next = True
                 pc_n.next = 0
@@ -302,6 +348,10 @@ def rfc_publisher(plan: Plan, **ports: Any) -> Any:
             frame_length.next = frame_total
         elif commit:
             frame_length.next = written
+        if streaming:
+            faulty.next = faulty_n
+            if msg_ready and faulty_n:
+                mismatches.next = mismatches + 1
 
     blocks = [control, registers, record_sources(plan, ports, rc, record_lanes)]
     if len(channel_valids) > 1:
@@ -309,7 +359,12 @@ def rfc_publisher(plan: Plan, **ports: Any) -> Any:
     blocks.append(channel_readies(plan, ports, pc, next_element))
     if streams:
         blocks.append(payload_sources(plan, ports, piece_index, payload_lanes))
-        blocks.append(stream_handshakes(plan, ports, pc, stream_take, stream_valid))
+        blocks.append(stream_handshakes(plan, ports, pc, stream_take, stream_valid, drain))
+    if streaming:
+        blocks.append(follow(mismatches, ports["error_count"]))
+    if held:
+        blocks.append(select_bit(bits_of(empties), tuple(held_table), pc, gone))
+        blocks.append(anything_left(bits_of(empties[1:]), leftover))
     blocks.append(
         loop_counters(
             plan, clk, rst, pc, count, load_loop, next_element, loop_counts, loop_more, more
@@ -380,7 +435,32 @@ def stream_ready(take: Any, pc: Any, at: int, ready: Any) -> Any:
 
 
 @block
-def stream_handshakes(plan: Plan, ports: dict[str, Any], pc: Any, take: Any, valid: Any) -> Any:
+def anything_left(empties: Any, left: Any) -> Any:
+    """`left` while any of the FIFOs whose `empties` bits these are holds a beat."""
+    full = 2 ** len(empties) - 1
+
+    @always_comb
+    def check() -> None:
+        left.next = empties != full
+
+    return check
+
+
+@block
+def draining_ready(take: Any, pc: Any, at: int, drain: Any, ready: Any) -> Any:
+    """`stream_ready`, and every beat while `drain`: the streamed-through stream's extra beats."""
+
+    @always_comb
+    def acknowledge() -> None:
+        ready.next = (take and pc == at) or drain
+
+    return acknowledge
+
+
+@block
+def stream_handshakes(
+    plan: Plan, ports: dict[str, Any], pc: Any, take: Any, valid: Any, drain: Any
+) -> Any:
     """Sub-stream readies, and `valid`: the tvalid of the current step's sub-stream."""
     t = tables(plan)
     blocks = []
@@ -388,7 +468,11 @@ def stream_handshakes(plan: Plan, ports: dict[str, Any], pc: Any, take: Any, val
     table = [0] * len(plan.steps)
     for index, at in enumerate(t.streams):
         name = plan.steps[at].stream
-        blocks.append(stream_ready(take, pc, at, ports[f"{name}_tready"]))
+        ready = ports[f"{name}_tready"]
+        if plan.streamed_last is not None and plan.steps[at].channel == 0:
+            blocks.append(draining_ready(take, pc, at, drain, ready))
+        else:
+            blocks.append(stream_ready(take, pc, at, ready))
         valids.append(ports[f"{name}_tvalid"])
         table[at] = index
     if len(valids) > 1:

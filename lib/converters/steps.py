@@ -180,6 +180,9 @@ class Plan:
         limits: Configured maxima.
         steps: What the converter does, in order; the last step is `End`.
         channels: The message channel, then one per sequence of messages or strings.
+        record_first: Publishers: the producer gives every field and length by the first beat
+            of the message's last stream (docs/accelerators.md), so that stream may go straight
+            through (`streamed_last`).
     """
 
     layout: Layout
@@ -187,6 +190,7 @@ class Plan:
     limits: Limits
     steps: tuple[Step, ...]
     channels: tuple[Channel, ...]
+    record_first: bool = False
 
     @property
     def is_cdr(self) -> bool:
@@ -207,6 +211,26 @@ class Plan:
             for i, s in enumerate(self.steps)
             if isinstance(s, Loop)
         )
+
+    @property
+    def streamed_last(self) -> int | None:
+        """The step of the stream a publisher passes straight through, None when it buffers all.
+
+        A record-first producer's last stream needs no buffer when it is the message's last
+        field, at the top level, selected, in a frame whose length follows from top-level
+        lengths: the publisher starts the frame at that stream's first beat.
+        """
+        at = len(self.steps) - 2
+        last = self.steps[at] if at >= 0 else None
+        if (
+            not self.record_first
+            or self.store_and_forward
+            or not isinstance(last, Payload)
+            or last.channel != 0
+            or not (last.stream and last.length_port)
+        ):
+            return None
+        return at
 
     def records(self) -> list[tuple[int, Record]]:
         """Return the record steps with their step indices."""

@@ -17,10 +17,9 @@ from typing import Any
 import numpy as np
 
 from rfc.lib.converters.steps import Loop, Payload, Plan, Record, SlotRole
-from rfc.messages.codec import Values, default_values
+from rfc.messages.codec import PRIMITIVE_STRUCTS, Values, default_values
 from rfc.messages.layout import FieldKind, Layout
 from rfc.messages.rosbags_adapter import PRIMITIVE_DTYPES
-from rfc.runtime.codec import PRIMITIVE_STRUCTS
 
 
 @dataclass

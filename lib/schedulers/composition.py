@@ -9,18 +9,28 @@ the granted child's grant, its offer the offered child's offer.
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import Any
 
 from myhdl import ConcatSignal, Signal, always_comb, block, intbv
 
-from rfc.lib.schedulers.spec import CompositionSpec
+from rfc.lib.schedulers.spec import AnySchedulerSpec, CompositionSpec
+from rfc.lib.types import Instances, SignalLike
 
 #: A block function with the scheduler ports (clk, rst, request, last, ready, offer, grant).
-SchedulerBlock = Callable[..., Any]
+SchedulerBlock = Callable[..., Instances]
 
 
 @block
-def composition(clk, rst, request, last, ready, offer, grant, spec: CompositionSpec, build) -> Any:
+def composition(
+    clk: SignalLike,
+    rst: SignalLike,
+    request: SignalLike,
+    last: SignalLike,
+    ready: SignalLike,
+    offer: SignalLike,
+    grant: SignalLike,
+    spec: CompositionSpec,
+    build: Callable[[AnySchedulerSpec], SchedulerBlock],
+) -> Instances:
     """The composite of `spec`; `build(spec)` gives the block of a child or of the parent.
 
     Ports are those of `statechart`: request and last (intbv[N] in), ready (in), offer and
@@ -57,11 +67,18 @@ def composition(clk, rst, request, last, ready, offer, grant, spec: CompositionS
 
 
 @block
-def child_port(offered: Any, last: Any, chosen: Any, wants: Any, ends: Any, gated: Any):
+def child_port(
+    offered: SignalLike,
+    last: SignalLike,
+    chosen: SignalLike,
+    wants: SignalLike,
+    ends: SignalLike,
+    gated: SignalLike,
+) -> Instances:
     """What the parent sees of one child, and the child's offer once the parent chose it."""
 
     @always_comb
-    def summarize():
+    def summarize() -> None:
         wants.next = offered != 0
         ends.next = (offered & last) != 0
         if chosen:
@@ -73,11 +90,11 @@ def child_port(offered: Any, last: Any, chosen: Any, wants: Any, ends: Any, gate
 
 
 @block
-def join_vector(joined: Any, port: Any):
+def join_vector(joined: SignalLike, port: SignalLike) -> Instances:
     """Drive an output port from the children's concatenated vectors."""
 
     @always_comb
-    def drive():
+    def drive() -> None:
         port.next = joined
 
     return drive

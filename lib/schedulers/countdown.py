@@ -15,18 +15,19 @@ from typing import Any
 from myhdl import Signal, always, always_comb, block, concat, intbv
 
 from rfc.lib.schedulers.statechart import Lines, PolicyHardware
+from rfc.lib.types import Instances, SignalLike
 
 
 @block
 def countdown_table(
-    clk: Any,
-    rst: Any,
+    clk: SignalLike,
+    rst: SignalLike,
     lines: Lines,
-    keys: list[Any],
+    keys: list[SignalLike],
     loads: Sequence[int],
     bits: int,
     keep_while_moving: bool,
-):
+) -> Instances:
     """Counters loading `loads[i]` (biased) on arrival; keys = (next value, not holder).
 
     Args:
@@ -45,7 +46,7 @@ def countdown_table(
     following = [Signal(intbv(0)[bits:]) for _ in range(n)]
 
     @always_comb
-    def count():
+    def count() -> None:
         for i in range(n):
             if arrival[i]:
                 following[i].next = load[i]
@@ -55,7 +56,7 @@ def countdown_table(
                 following[i].next = counter[i]
 
     @always_comb
-    def prioritize():
+    def prioritize() -> None:
         for i in range(n):
             if hold[i]:
                 keys[i].next = concat(following[i], False)
@@ -63,7 +64,7 @@ def countdown_table(
                 keys[i].next = concat(following[i], True)
 
     @always(clk.posedge)
-    def register():
+    def register() -> None:
         if rst:
             for i in range(n):
                 counter[i].next = 0

@@ -15,8 +15,6 @@ two cycles for a lone request, one more per request registered in the same burst
 
 from __future__ import annotations
 
-from typing import Any
-
 from myhdl import Signal, always, always_comb, block, concat, intbv, modbv
 
 from rfc.lib.schedulers.countdown import countdown_hardware, countdown_table
@@ -24,10 +22,18 @@ from rfc.lib.schedulers.priority_tree import index_bits, priority_tree
 from rfc.lib.schedulers.registry import policy
 from rfc.lib.schedulers.spec import Algorithm, SchedulerSpec
 from rfc.lib.schedulers.statechart import Lines, PolicyHardware
+from rfc.lib.types import Instances, SignalLike
 
 
 @block
-def loedf_table(clk: Any, rst: Any, lines: Lines, keys: list[Any], pause: Any, spec: SchedulerSpec):
+def loedf_table(
+    clk: SignalLike,
+    rst: SignalLike,
+    lines: Lines,
+    keys: list[SignalLike],
+    pause: SignalLike,
+    spec: SchedulerSpec,
+) -> Instances:
     """Deadline counters: load D_i - 1 (biased) on arrival, count down while pending."""
     bias = 1 << (spec.counter_bits - 1)
     loads = [d - 1 + bias for d in spec.deadline]
@@ -41,7 +47,14 @@ def loedf_hardware(spec: SchedulerSpec) -> PolicyHardware:
 
 
 @block
-def roedf_table(clk: Any, rst: Any, lines: Lines, keys: list[Any], pause: Any, spec: SchedulerSpec):
+def roedf_table(
+    clk: SignalLike,
+    rst: SignalLike,
+    lines: Lines,
+    keys: list[SignalLike],
+    pause: SignalLike,
+    spec: SchedulerSpec,
+) -> Instances:
     """Absolute deadlines registered one per cycle through a shared adder; drives `pause`."""
     n, bits = spec.n, spec.counter_bits
     deadline = tuple(spec.deadline)
@@ -56,21 +69,21 @@ def roedf_table(clk: Any, rst: Any, lines: Lines, keys: list[Any], pause: Any, s
     due = Signal(modbv(0)[bits:])
 
     @always_comb
-    def unregistered():
+    def unregistered() -> None:
         waiting.next = request & ~registered
 
     encoder = priority_tree(waiting, [], chosen, pause, chosen_key, n, 0)
 
     @always_comb
-    def deadline_rom():
+    def deadline_rom() -> None:
         relative.next = deadline[chosen]
 
     @always_comb
-    def shared_adder():
+    def shared_adder() -> None:
         due.next = timer + relative
 
     @always_comb
-    def prioritize():
+    def prioritize() -> None:
         for i in range(n):
             if hold[i]:
                 keys[i].next = concat(absolute[i], False)
@@ -78,7 +91,7 @@ def roedf_table(clk: Any, rst: Any, lines: Lines, keys: list[Any], pause: Any, s
                 keys[i].next = concat(absolute[i], True)
 
     @always(clk.posedge)
-    def register():
+    def register() -> None:
         flags = intbv(0)[n:]
         if rst:
             timer.next = 0

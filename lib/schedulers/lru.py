@@ -8,25 +8,31 @@ input arithmetic beyond a comparison and a decrement, and no N x N age matrix.
 
 from __future__ import annotations
 
-from typing import Any
-
 from myhdl import always, block
 
 from rfc.lib.schedulers.priority_tree import index_bits
 from rfc.lib.schedulers.registry import policy
 from rfc.lib.schedulers.spec import Algorithm, SchedulerSpec
 from rfc.lib.schedulers.statechart import Lines, PolicyHardware
+from rfc.lib.types import Instances, SignalLike
 
 
 @block
-def lru_table(clk: Any, rst: Any, lines: Lines, keys: list[Any], pause: Any, spec: SchedulerSpec):
+def lru_table(
+    clk: SignalLike,
+    rst: SignalLike,
+    lines: Lines,
+    keys: list[SignalLike],
+    pause: SignalLike,
+    spec: SchedulerSpec,
+) -> Instances:
     """The ranks (they are the tree's keys); reset to the input indices."""
     n = spec.n
     bottom = n - 1
     selected, best_valid, best_key = lines.selected, lines.best_valid, lines.best_key
 
     @always(clk.posedge)
-    def rerank():
+    def rerank() -> None:
         if rst:
             for i in range(n):
                 keys[i].next = i

@@ -9,18 +9,24 @@ slacks cross therefore swap the grant at most once per two cycles (the paper's l
 
 from __future__ import annotations
 
-from typing import Any
-
 from myhdl import block
 
 from rfc.lib.schedulers.countdown import countdown_hardware, countdown_table
 from rfc.lib.schedulers.registry import policy
 from rfc.lib.schedulers.spec import Algorithm, SchedulerSpec
 from rfc.lib.schedulers.statechart import Lines, PolicyHardware
+from rfc.lib.types import Instances, SignalLike
 
 
 @block
-def lst_table(clk: Any, rst: Any, lines: Lines, keys: list[Any], pause: Any, spec: SchedulerSpec):
+def lst_table(
+    clk: SignalLike,
+    rst: SignalLike,
+    lines: Lines,
+    keys: list[SignalLike],
+    pause: SignalLike,
+    spec: SchedulerSpec,
+) -> Instances:
     """Slack counters: load D_i - T_i - 1 (biased) on arrival, count down while waiting."""
     bias = 1 << (spec.counter_bits - 1)
     loads = [d - t - 1 + bias for t, d in zip(spec.transfer, spec.deadline, strict=True)]

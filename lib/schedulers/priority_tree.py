@@ -8,9 +8,9 @@ relative to its subtree, so a key-less tree (fixed priority) is a plain priority
 
 from __future__ import annotations
 
-from typing import Any
-
 from myhdl import Constant, Signal, always_comb, block, concat, intbv, modbv
+
+from rfc.lib.types import Instances, SignalLike
 
 
 def tree_width(n: int) -> int:
@@ -28,15 +28,15 @@ def index_bits(n: int) -> int:
 
 @block
 def priority_tree(
-    valid: Any,
-    keys: list[Any],
-    best: Any,
-    best_valid: Any,
-    best_key: Any,
+    valid: SignalLike,
+    keys: list[SignalLike],
+    best: SignalLike,
+    best_valid: SignalLike,
+    best_key: SignalLike,
     n: int,
     key_bits: int,
     modular: bool = False,
-) -> Any:
+) -> Instances:
     """Combinational argmin over the valid leaves.
 
     Every node is its own block on its own signals (no arrays of signals): each is driven on
@@ -105,7 +105,7 @@ def priority_tree(
 
 
 @block
-def tree_leaf(valid: Any, index: int, leaf: Any) -> Any:
+def tree_leaf(valid: SignalLike, index: int, leaf: SignalLike) -> Instances:
     """Leaf `index`: the candidate's valid bit."""
 
     @always_comb
@@ -117,18 +117,18 @@ def tree_leaf(valid: Any, index: int, leaf: Any) -> Any:
 
 @block
 def tree_node(
-    valid_l: Any,
-    valid_r: Any,
-    key_l: Any,
-    key_r: Any,
-    index_l: Any,
-    index_r: Any,
-    valid_out: Any,
-    key_out: Any,
-    index_out: Any,
+    valid_l: SignalLike,
+    valid_r: SignalLike,
+    key_l: SignalLike,
+    key_r: SignalLike,
+    index_l: SignalLike,
+    index_r: SignalLike,
+    valid_out: SignalLike,
+    key_out: SignalLike,
+    index_out: SignalLike,
     bits: int,
     sign: int,
-) -> Any:
+) -> Instances:
     """One node: the right operand wins on the sign of (right - left).
 
     Bit `bits` of the zero-extended difference is the borrow of an unsigned comparison, bit
@@ -151,7 +151,14 @@ def tree_node(
 
 
 @block
-def tree_root(valid: Any, key: Any, index: Any, best: Any, best_valid: Any, best_key: Any) -> Any:
+def tree_root(
+    valid: SignalLike,
+    key: SignalLike,
+    index: SignalLike,
+    best: SignalLike,
+    best_valid: SignalLike,
+    best_key: SignalLike,
+) -> Instances:
     """The root node's index, validity and key drive the tree's outputs."""
     top = len(best) + 1
 

@@ -13,12 +13,12 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
 
 from myhdl import Signal, always, always_comb, block, intbv
 
 from rfc.lib.schedulers.priority_tree import index_bits, priority_tree
 from rfc.lib.schedulers.spec import SchedulerSpec
+from rfc.lib.types import Instances, SignalLike
 
 
 @dataclass(frozen=True)
@@ -39,17 +39,17 @@ class Lines:
         selected: Bool, the holder register takes `best` at this clock edge.
     """
 
-    request: Any
-    candidates: Any
-    pending: Any
-    arrival: Any
-    grant: Any
-    complete: Any
-    hold: Any
-    best: Any
-    best_valid: Any
-    best_key: Any
-    selected: Any
+    request: SignalLike
+    candidates: SignalLike
+    pending: SignalLike
+    arrival: SignalLike
+    grant: SignalLike
+    complete: SignalLike
+    hold: SignalLike
+    best: SignalLike
+    best_valid: SignalLike
+    best_key: SignalLike
+    selected: SignalLike
 
 
 @dataclass(frozen=True)
@@ -71,21 +71,21 @@ class PolicyHardware:
     key_bits: int
     modular: bool
     pauses: bool
-    table: Callable[..., Any] | None
+    table: Callable[..., Instances] | None
 
 
 @block
 def statechart(
-    clk: Any,
-    rst: Any,
-    request: Any,
-    last: Any,
-    ready: Any,
-    offer: Any,
-    grant: Any,
+    clk: SignalLike,
+    rst: SignalLike,
+    request: SignalLike,
+    last: SignalLike,
+    ready: SignalLike,
+    offer: SignalLike,
+    grant: SignalLike,
     spec: SchedulerSpec,
     policy: PolicyHardware,
-) -> Any:
+) -> Instances:
     """One scheduler: the static states plus `policy`'s Compute Condition and Set Grant.
 
     Args:
@@ -133,46 +133,46 @@ def statechart(
     preemptive = policy.preemptive
 
     @always_comb
-    def decode_holder():
+    def decode_holder() -> None:
         for i in range(n):
             hold.next[i] = owner_valid and owner == i
 
     @always_comb
-    def offer_channel():
+    def offer_channel() -> None:
         if computing:
             offer.next = 0
         else:
             offer.next = hold & request
 
     @always_comb
-    def offer_always():
+    def offer_always() -> None:
         offer.next = hold & request
 
     @always_comb
-    def grant_channel():
+    def grant_channel() -> None:
         if ready:
             grant.next = offer
         else:
             grant.next = 0
 
     @always_comb
-    def detect_tlast():
+    def detect_tlast() -> None:
         complete.next = grant & last
         done.next = (grant & last) != 0
 
     @always_comb
-    def exclude_completing():
+    def exclude_completing() -> None:
         candidates.next = request & ~(grant & last)
 
     if policy.pauses:
 
         @always_comb
-        def decide():
+        def decide() -> None:
             reselect.next = preemptive or computing or done or not owner_valid
             selected.next = (preemptive or computing or done or not owner_valid) and not pause
 
         @always(clk.posedge)
-        def set_grant():
+        def set_grant() -> None:
             if rst:
                 owner.next = 0
                 owner_valid.next = 0
@@ -189,11 +189,11 @@ def statechart(
     else:
 
         @always_comb
-        def decide():
+        def decide() -> None:
             selected.next = preemptive or done or not owner_valid
 
         @always(clk.posedge)
-        def set_grant():
+        def set_grant() -> None:
             if rst:
                 owner.next = 0
                 owner_valid.next = 0
@@ -222,17 +222,23 @@ def statechart(
 
 @block
 def arrival_detector(
-    clk: Any, rst: Any, request: Any, complete: Any, seen: Any, pending: Any, arrival: Any
-):
+    clk: SignalLike,
+    rst: SignalLike,
+    request: SignalLike,
+    complete: SignalLike,
+    seen: SignalLike,
+    pending: SignalLike,
+    arrival: SignalLike,
+) -> Instances:
     """A message arrives when `tvalid` rises, or stays high after the previous `tlast`."""
 
     @always_comb
-    def classify():
+    def classify() -> None:
         pending.next = request | seen
         arrival.next = request & ~seen
 
     @always(clk.posedge)
-    def remember():
+    def remember() -> None:
         if rst:
             seen.next = 0
         else:

@@ -19,13 +19,17 @@ HUB = EXAMPLES / "sensor_hub" / "SensorHub.yaml"
 TIMING = "completed,missed,max_lateness"
 
 
+def traffic_of(design, horizon=None):
+    return project_traffic(design.project.name, design.infrastructure.scheduler.inputs, horizon)
+
+
 @pytest.fixture(scope="module")
 def hub():
     return compile_spec(HUB)
 
 
 def test_the_traffic_comes_from_layouts_and_timing(hub):
-    traffic = project_traffic(hub)
+    traffic = traffic_of(hub)
     assert traffic.publishers[:2] == ("Pose_pub", "Twist_pub")
     # PoseWithCovariance: 4 + 7*8 + 36*8 = 348 bytes + an 8-byte chunk header on 64-bit beats
     assert traffic.transfer == (45, 44, 44, 8, 5, 8)
@@ -36,7 +40,7 @@ def test_the_traffic_comes_from_layouts_and_timing(hub):
 
 
 def test_deadline_driven_schedulers_win_the_hub(hub):
-    recommendation = recommend(hub, parse_objective(TIMING))
+    recommendation = recommend(traffic_of(hub), parse_objective(TIMING))
     ranking = {c.scheduler: c for c in recommendation.ranking}
     assert set(ranking) == set(candidates(6))
     assert recommendation.ranking[0].metrics["missed"] == 0
@@ -48,7 +52,7 @@ def test_deadline_driven_schedulers_win_the_hub(hub):
 def test_a_publisher_without_period_is_named():
     design = compile_spec(EXAMPLES / "multi_type" / "MultiType.yaml")
     with pytest.raises(RfcError) as caught:
-        project_traffic(design)
+        traffic_of(design)
     assert "publishers Image_pub, Scan_pub, Twist_pub of project 'MultiType' have no period" in (
         str(caught.value)
     )
@@ -94,13 +98,13 @@ def with_periods(design, periods):
 def test_long_periods_get_a_horizon_of_ten_messages_of_the_slowest_publisher(hub):
     # 25-33 ms at 100 MHz: a fixed 2 ms horizon would see one message of each publisher
     periods = (2_500_000, 2_600_000, 2_700_000, 2_800_000, 3_000_000, 3_300_000)
-    traffic = project_traffic(with_periods(hub, periods))
+    traffic = traffic_of(with_periods(hub, periods))
     assert traffic.cycles >= 10 * 3_300_000
     assert min(traffic.messages) >= 10
     assert traffic.messages[0] == -(-traffic.cycles // 2_500_000)
 
 
 def test_a_horizon_given_is_the_horizon_simulated(hub):
-    assert project_traffic(hub, horizon=12_345).cycles == 12_345
-    recommendation = recommend(hub, parse_objective(TIMING), ["LRU"], horizon=400)
+    assert traffic_of(hub, horizon=12_345).cycles == 12_345
+    recommendation = recommend(traffic_of(hub, horizon=400), parse_objective(TIMING), ["LRU"])
     assert recommendation.traffic.messages == (2, 2, 1, 8, 8, 4)

@@ -99,7 +99,7 @@ CASES = {
     ),
     "buffers beyond the block ram": (
         multi_type_at_default_maxima,
-        "the logic's buffers need 3,339 block RAMs of 36 Kb at the project's maxima",
+        "the logic's buffers need 2,059 block RAMs of 36 Kb at the project's maxima",
     ),
 }
 
@@ -134,3 +134,12 @@ def test_a_full_hd_image_subscriber_is_guarded_by_the_bytes_before_its_data(widt
     prefix = len(types.serialize(longest, "sensor_msgs/msg/Image"))
     assert guard.words >= -(-prefix // (width // 8)) + SLACK_BEATS  # and the checker's slack
     assert bram36(guard.bits, guard.words) == 1
+
+
+def test_only_a_myhdl_producer_streams_its_image_through_the_publisher():
+    # the same full-HD system: MyHDL stages are record-first, HLS cores are not
+    example = ROOT / "examples/image_pipeline"
+    assert run_rfc("check", example / "ImagePipeline.yaml", cwd=example).returncode == 0
+    refused = run_rfc("check", example / "ImagePipeline_hls.yaml", cwd=example)
+    assert refused.returncode == 1
+    assert "the largest holds 'data' of 'Integral_pub' (1,519)" in refused.stderr

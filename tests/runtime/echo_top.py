@@ -21,7 +21,7 @@ from typing import Any
 from myhdl import ResetSignal, Signal, always_comb, always_seq, block, concat, enum, intbv
 
 from rfc.ir.model import Design
-from rfc.runtime.loopback import pass_through_routes
+from rfc.ir.pass_through import pass_through_routes
 from rfc.toolchain import convert_myhdl
 
 NO_ROUTE = 0xFFFF

@@ -6,9 +6,10 @@ from functools import partial
 
 import pytest
 
+from rfc.ir.pass_through import pass_through_routes
 from rfc.lower.runtime_plan import DesignPlan
 from rfc.runtime.core import Runtime
-from rfc.runtime.loopback import PassThroughLogic, pass_through_routes
+from rfc.runtime.loopback import PassThroughLogic
 from rfc.runtime.myhdl_sim import simulate_with_myhdl
 from rfc.runtime.replay import replay
 from tests.runtime.echo_top import echo_logic, route_table

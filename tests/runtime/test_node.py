@@ -12,10 +12,11 @@ import time
 import pytest
 
 from rfc.errors import RfcError
+from rfc.ir.pass_through import pass_through_routes
 from rfc.lower.runtime_plan import DesignPlan
 from rfc.runtime.core import QueueConfig, Runtime
 from rfc.runtime.dma_device import FileDma
-from rfc.runtime.loopback import PassThroughLogic, pass_through_routes
+from rfc.runtime.loopback import PassThroughLogic
 from rfc.runtime.node import NodeCore
 from rfc.runtime.replay import replay
 from tests.runtime.support import compiled, pose_messages
@@ -107,7 +108,10 @@ def test_a_logic_that_takes_no_transfer_is_an_error_after_the_answer_timeout(tmp
 
 
 def test_the_node_imports_only_the_runtime_and_its_two_dependencies(tmp_path, examples_dir):
-    """What the `runtime` extra promises: numpy and rosbags, no compiler, no simulator."""
+    """What the `runtime` extra promises: numpy and rosbags, no compiler, no simulator.
+
+    The runtime reads the message layouts, the codec and the errors below it in the layers.
+    """
     from tests.support.cli import run_rfc
 
     spec = examples_dir / "quaternion_to_euler" / "project.yaml"
@@ -126,7 +130,8 @@ def test_the_node_imports_only_the_runtime_and_its_two_dependencies(tmp_path, ex
         [sys.executable, "-c", script], capture_output=True, text=True, check=True
     )
     loaded = set(result.stdout.split())
-    assert {m for m in loaded if m.startswith("rfc.") and not m.startswith("rfc.runtime")} == set()
+    below = ("rfc.runtime", "rfc.messages", "rfc.errors", "rfc.user_code")  # its layers
+    assert {m for m in loaded if m.startswith("rfc.") and not m.startswith(below)} == set()
     assert not loaded & {"myhdl", "cocotb", "typer", "numba", "matplotlib", "rich", "rclpy"}
     assert {"numpy", "rosbags"} <= loaded
 

@@ -6,9 +6,9 @@ import shutil
 
 import numpy as np
 
+from rfc.messages.codec import default_values, encode
 from rfc.messages.layout import flatten
 from rfc.messages.rosbags_adapter import MessageTypes
-from rfc.runtime.codec import default_values, encode
 from rfc.runtime.core import Runtime
 from rfc.runtime.plan import load_plan
 from tests.support.cli import run_rfc

@@ -9,9 +9,10 @@ import socket
 import threading
 
 from rfc.driver import compile_spec
+from rfc.ir.pass_through import pass_through_routes
 from rfc.messages.rosbags_adapter import message_types
 from rfc.runtime.dma_device import FileDma
-from rfc.runtime.loopback import PassThroughLogic, pass_through_routes
+from rfc.runtime.loopback import PassThroughLogic
 from rfc.runtime.node import NodeCore
 from rfc.runtime.plan import load_plan
 from rfc.runtime.ros1 import ros1_name

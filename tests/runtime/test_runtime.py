@@ -6,10 +6,11 @@ import pytest
 
 from rfc.driver import compile_spec
 from rfc.errors import RfcError
+from rfc.ir.pass_through import pass_through_routes
 from rfc.lower.runtime_plan import DesignPlan
 from rfc.passes.pipeline import MODEL_PIPELINE
 from rfc.runtime.core import QueueConfig, QueuePolicy, Runtime
-from rfc.runtime.loopback import PassThroughLogic, pass_through_routes
+from rfc.runtime.loopback import PassThroughLogic
 from rfc.runtime.protocol import Chunk, ChunkFlags
 from rfc.runtime.replay import replay
 from tests.runtime.support import compiled, pose_messages, system_copy

@@ -8,9 +8,10 @@ import pytest
 
 from rfc.driver import compile_spec
 from rfc.errors import RfcError
+from rfc.ir.pass_through import pass_through_routes
 from rfc.lower.runtime_plan import DesignPlan
 from rfc.runtime.core import Runtime
-from rfc.runtime.loopback import PassThroughLogic, pass_through_routes
+from rfc.runtime.loopback import PassThroughLogic
 from rfc.runtime.replay import replay
 from tests.runtime.support import SYSTEMS, compiled, pose_messages
 

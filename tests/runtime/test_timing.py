@@ -19,6 +19,11 @@ def load_tool():
     return module
 
 
+def bus_of(plan):
+    project = plan.design.project
+    return {"bus_width": project.bus_width, "clock_mhz": project.clock_mhz}
+
+
 @pytest.fixture(scope="module")
 def setting():
     tool = load_tool()
@@ -38,8 +43,8 @@ def test_transfer_time_counts_beats_of_the_bus_with_the_chunk_header():
 def test_bursts_of_images_make_twists_stale_only_in_a_shared_fifo(setting):
     tool, plan, data, per_subscriber, shared, image = setting
     traffic = next(iter(tool.scenarios(data).values()))
-    lru = measure(plan, traffic, per_subscriber, 1_000_000_000)
-    fifo = measure(plan, traffic, shared, 1_000_000_000)
+    lru = measure(plan, traffic, per_subscriber, 1_000_000_000, **bus_of(plan))
+    fifo = measure(plan, traffic, shared, 1_000_000_000, **bus_of(plan))
     twist_lru, twist_fifo = lru["/cmd_vel"], fifo["/cmd_vel"]
     assert twist_lru.arrived == twist_fifo.arrived == twist_lru.delivered == 50
     # per subscriber: a twist waits for at most the image on the DMA (and a scan)
@@ -54,8 +59,8 @@ def test_bursts_of_images_make_twists_stale_only_in_a_shared_fifo(setting):
 def test_under_overload_only_the_overloading_topic_loses_messages_per_subscriber(setting):
     tool, plan, data, per_subscriber, shared, _ = setting
     traffic = list(tool.scenarios(data).values())[2]
-    lru = measure(plan, traffic, per_subscriber, 1_000_000_000)
-    fifo = measure(plan, traffic, shared, 1_000_000_000)
+    lru = measure(plan, traffic, per_subscriber, 1_000_000_000, **bus_of(plan))
+    fifo = measure(plan, traffic, shared, 1_000_000_000, **bus_of(plan))
     assert lru["/camera/image"].dropped > 0
     assert lru["/cmd_vel"].dropped == lru["/scan"].dropped == 0
     assert fifo["/cmd_vel"].dropped > 0
@@ -68,6 +73,6 @@ def test_under_overload_only_the_overloading_topic_loses_messages_per_subscriber
 def test_messages_arriving_together_are_all_counted(setting):
     _, plan, data, per_subscriber, _, _ = setting
     traffic = [Traffic("/cmd_vel", data["/cmd_vel"], 1_000_000, burst=4)]
-    (figures,) = measure(plan, traffic, per_subscriber, 3_000_000).values()
+    (figures,) = measure(plan, traffic, per_subscriber, 3_000_000, **bus_of(plan)).values()
     assert (figures.arrived, figures.delivered, figures.stale) == (12, 12, 9)
     assert figures.age_ms("max") * 1e6 == 4 * transfer_ns(len(data["/cmd_vel"]), 64, 100.0)

@@ -23,8 +23,8 @@ from pathlib import Path
 from hypothesis import strategies as st
 
 from rfc.cli import main
-from rfc.runtime.user_code import TIME_LIMIT_ENV
 from rfc.toolchain.ghdl import GhdlError, analyze
+from rfc.user_code import TIME_LIMIT_ENV
 
 ROOT = Path(__file__).resolve().parents[2]
 LISTING_1 = ROOT / "examples" / "rotation_converter"

@@ -47,7 +47,7 @@ from rfc.passes.check_hardware import (
     takes_interfaces,
     vhdl_entity,
 )
-from rfc.runtime.user_code import running_user_code
+from rfc.user_code import running_user_code
 
 #: The Vitis HLS cores' control ports (``ap_ctrl_hs``).
 _HLS_CONTROL = (

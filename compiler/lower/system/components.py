@@ -108,14 +108,22 @@ def synthesized_netlist(sources: Sequence[Path], top: str, directory: Path) -> t
 
 
 def converter_component(
-    converter: Converter, side: Side, directory: Path, name: str, limits: Limits
+    converter: Converter,
+    side: Side,
+    directory: Path,
+    name: str,
+    limits: Limits,
+    record_first: bool = False,
 ) -> Component:
     """A subscriber or publisher converter of the model.
 
     A publisher that takes strings or sequences comes with its buffers (`rfc.lib.converters.
-    buffers`): the producer may hand them over before the message's record.
+    buffers`): the producer may hand them over before the message's record. Behind a
+    record-first producer the message's last stream needs none (`Plan.streamed_last`).
     """
-    converter_plan = plan(converter.layout, converter.bus_width, limits)
+    converter_plan = replace(
+        plan(converter.layout, converter.bus_width, limits), record_first=record_first
+    )
     buffers = buffers_of(converter_plan) if side is Side.PUBLISHER else ()
     if buffers:
         what = f"publisher of {converter.layout.display_name} with its buffers (rfc)"

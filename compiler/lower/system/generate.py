@@ -35,7 +35,7 @@ from rfc.lower.system.slices import RegisterSlices
 from rfc.lower.system.stream_marks import StreamMarks
 from rfc.lower.system.top import CLOCK, RESET_N, Interface, Terminal, TopBuilder, wire_connection
 from rfc.messages.limits import Limits
-from rfc.passes.check_hardware import check_buffer_memory
+from rfc.passes.check_hardware import check_buffer_memory, record_first
 from rfc.passes.names import snake_identifier as identifier
 from rfc.passes.resolve_scheduler import ResolveScheduler
 
@@ -146,7 +146,12 @@ def generate_system(
         for converter in converters:
             label = identifier(converter.block)
             component = converter_component(
-                converter, side, directory, f"{label}_{side.value}", limits
+                converter,
+                side,
+                directory,
+                f"{label}_{side.value}",
+                limits,
+                side is Side.PUBLISHER and record_first(design, converter),
             )
             components.append(component)
             if component.buffers:
@@ -182,7 +187,8 @@ def generate_system(
         for source, output, target, input_ in hardware.wires:
             builder.wire(Terminal(cells[source], output), Terminal(cells[target], input_))
         for (port, role), (suffix, name) in hardware.pins.items():
-            interfaces.setdefault((block.name, port), {})[role] = Terminal(cells[suffix], name)
+            terminals = interfaces.setdefault((block.name, port), {})
+            interfaces[(block.name, port)] = {**terminals, role: Terminal(cells[suffix], name)}
 
     check_buffer_memory(design, buffers)  # after the accelerators: their errors come first
     slices = RegisterSlices(identifier(design.project.name), directory)
@@ -191,12 +197,12 @@ def generate_system(
     by_source: dict[tuple[str, str], list[Connection]] = defaultdict(list)
     for connection in infrastructure.hardware_connections:
         by_source[(connection.source.block, connection.source.port or "")].append(connection)
-    for source, connections in by_source.items():
+    for origin, connections in by_source.items():
         targets = [interfaces[(c.destination.block, c.destination.port or "")] for c in connections]
         what = f"connection {connections[0].source} → {connections[0].destination}"
         if len(targets) == 1:
             complete = marks.complete(
-                builder, design, connections[0], interfaces[source], targets[0]
+                builder, design, connections[0], interfaces[origin], targets[0]
             )
             into = connections[0].destination
             label = f"{identifier(into.block)}_{identifier(into.port or 'in')}_slice"
@@ -205,7 +211,7 @@ def generate_system(
         if len(targets) not in forks:
             forks[len(targets)] = fork_component(len(targets), directory, f"rfc_fork{len(targets)}")
             components.append(forks[len(targets)])
-        _fan_out(builder, interfaces[source], targets, forks[len(targets)].entity, what)
+        _fan_out(builder, interfaces[origin], targets, forks[len(targets)].entity, what)
 
     components += marks.components
     components += slices.components

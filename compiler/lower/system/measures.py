@@ -84,8 +84,10 @@ def buffers_section(system: SystemHardware) -> ReportSection:
     lines = [
         "A publisher takes a message's strings and sequences only after its other fields (it "
         "needs every length for the frame length), so each gets a FIFO that holds one message "
-        "at the project's maxima. A subscriber that hands strings or sequences on holds each "
-        "frame whole (`(whole frame)`), or only its bytes before a last primitive sequence "
+        "at the project's maxima; behind a MyHDL accelerator (record-first) the message's last "
+        "stream goes straight through when it is the last field. A subscriber that hands "
+        "strings or sequences on holds each frame whole (`(whole frame)`), or only its bytes "
+        "before a last primitive sequence "
         "(`(frame before 'data')`, checked against the size its chunk header declares), until "
         "it is checked, so that a malformed one is dropped before any of it is handed on. "
         f"Together at most {total} block RAMs of 36 Kb "

@@ -58,12 +58,12 @@ class SchedulerTree:
     @property
     def n(self) -> int:
         """Number of scheduler inputs."""
-        return self.transfer.shape[1]
+        return int(self.transfer.shape[1])
 
     @property
     def batch(self) -> int:
         """Number of replicates R."""
-        return self.transfer.shape[0]
+        return int(self.transfer.shape[0])
 
     @property
     def structure(self) -> tuple[IntArray, ...]:

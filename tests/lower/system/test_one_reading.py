@@ -24,6 +24,7 @@ EXAMPLES = (
     "image_pipeline/ImagePipeline.yaml",  # three MyHDL stages on typed streams
     "quaternion_to_euler/project.yaml",
     "multi_type/MultiType.yaml",
+    "image_pipeline/ImagePipeline.yaml",  # record-first stages, the pixels streamed through
     "rotation_converter/RotationConverterNode.yaml",  # PFP
     "sensor_hub/SensorHub.yaml",  # an HLS core behind its ap_ctrl wrapper
     "franka_fk/franka_fk.yaml",  # interface objects, the arithmetic engine

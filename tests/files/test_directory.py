@@ -7,8 +7,8 @@ from pathlib import Path
 import pytest
 
 from rfc.errors import RfcError
-from rfc.lower.manifest import HEADER, MARKER
-from rfc.lower.writer import kept_in, replace_directory
+from rfc.files.directory import kept_in, replace_directory
+from rfc.files.manifest import HEADER, MARKER
 
 
 def _writer(files: dict[str, str]):

@@ -8,8 +8,8 @@ from dataclasses import replace
 import pytest
 
 from rfc.messages.layout import flatten
+from rfc.messages.layout_model import layout_from_json, layout_to_json
 from rfc.messages.rosbags_adapter import message_types
-from rfc.runtime.layout import layout_from_json, layout_to_json
 
 
 @pytest.mark.parametrize("middleware", ["ros1", "ros2"])

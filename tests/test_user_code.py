@@ -12,10 +12,10 @@ import pytest
 
 from rfc.errors import RfcError
 from rfc.messages.rosbags_adapter import message_types, write_bag
-from rfc.runtime.user_code import TIME_LIMIT_ENV, running_user_code
+from rfc.user_code import TIME_LIMIT_ENV, running_user_code
 from tests.runtime.support import pose_messages, system_copy
 
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[1]
 LISTING_1_PY = ROOT / "examples" / "rotation_converter" / "RotationConverterNode.py"
 POSE = "geometry_msgs/msg/PoseWithCovarianceStamped"
 

@@ -17,7 +17,7 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from types import FrameType
 
-from rfc.runtime.errors import RfcError, SourceLocation
+from rfc.errors import RfcError, SourceLocation
 
 #: Seconds any one piece of user code may run.
 DEFAULT_TIME_LIMIT_S = 60.0

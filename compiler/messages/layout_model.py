@@ -3,7 +3,7 @@
 A `Layout` is the flattened form of a message type (``rfc.messages.layout.flatten`` derives it
 from the definitions at build time): its leaves in serialization order, with their kinds,
 alignment and static offsets. The runtime plan carries layouts as JSON (`layout_to_json`,
-`layout_from_json`), so the processor side decodes and shapes frames without the compiler.
+`layout_from_json`), so the processor side decodes and shapes frames with NumPy alone.
 """
 
 from __future__ import annotations

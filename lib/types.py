@@ -1,0 +1,16 @@
+"""The names of MyHDL's values at rfc's typed boundary.
+
+MyHDL ships no type information: a `Signal`, its slices and shadows, and what a ``@block``
+function returns are opaque to mypy. rfc's hardware functions name them with these aliases
+rather than a bare `Any`, so that the one place types stop is visible and searchable
+(typings/myhdl types MyHDL's decorators themselves).
+"""
+
+from __future__ import annotations
+
+from typing import Any, TypeAlias
+
+#: A MyHDL `Signal` (or `ResetSignal`, a slice or a shadow of one).
+SignalLike: TypeAlias = Any
+#: What a MyHDL ``@block`` function returns: its instances, elaborated into a block.
+Instances: TypeAlias = Any

@@ -21,7 +21,6 @@ from tests.support.cli import run_rfc
 ROOT = Path(__file__).resolve().parents[3]
 #: The examples whose logic rfc builds.
 EXAMPLES = (
-    "image_pipeline/ImagePipeline.yaml",  # three MyHDL stages on typed streams
     "quaternion_to_euler/project.yaml",
     "multi_type/MultiType.yaml",
     "image_pipeline/ImagePipeline.yaml",  # record-first stages, the pixels streamed through

@@ -31,9 +31,7 @@ def replayed(tmp_path_factory) -> tuple[list[np.ndarray], dict[str, Path]]:
     assert sorted(image.size % 8 for image in images) == list(range(8))
     bag = folder / "images.mcap"
     example_module("make_bag").write_images(bag, images)
-    # the stages compute for up to a cycle per pixel after the last input beat
-    spec = EXAMPLE / "ImagePipeline.yaml"
-    return images, replay_readings(spec, bag, folder, "--drain-cycles", "5000")
+    return images, replay_readings(EXAMPLE / "ImagePipeline.yaml", bag, folder)
 
 
 @pytest.mark.slow

@@ -5,16 +5,15 @@ out in space instead of time: four pipelined float64 → fixed converters, nine 
 once, the roll and yaw CORDICs side by side as unrolled pipelines, then the pitch CORDIC on their
 lengths, and three pipelined fixed → float64 converters. No stage holds more than a carry chain
 or a few LUT levels of logic, so that the core keeps within half a 100 MHz period of 7-series
-cell delay (docs/performance.md).
-Every register moves on one stall enable, while the result queue at the end has room: when the
-consumer does not take results, the queue fills, then the whole pipeline holds and takes no new
-quaternion until a result leaves.
+cell delay (docs/performance.md). Every register moves on one stall enable, while the result
+queue at the end has room: when the consumer does not take results, the queue fills, then the
+whole pipeline holds and takes no new quaternion until a result leaves.
 
 Stages (registers), from the input handshake: the float64 → Q2.44 (`PIPELINED`) converters'
 (`rfc.lib.fixed.pipeline`, the first one takes the handshake); exact products (limb products on
 the DSP48s' M and P registers, then their sums in a tree); the five sums; the CORDIC inputs,
-rounded; roll and yaw CORDICs (prerotation and a stage per iteration); lengths; pitch CORDIC;
-angles; the fixed → float64 converters'; the result queue (float64).
+cut to their scale, then rounded; roll and yaw CORDICs (prerotation and a stage per iteration);
+lengths; pitch CORDIC; angles; the fixed → float64 converters'; the result queue (float64).
 sin(pitch)·gain/2 and the roll and yaw angles wait in delay lines beside the CORDICs.
 """
 
@@ -39,10 +38,11 @@ CORDIC_STAGES = CORDIC.iterations + 1
 #: Registers of an exact product of two components (limb products, their sums).
 PRODUCT_STAGES = exact_multiply_stages(PIPELINED.component.width, PIPELINED.component.width)
 #: Cycles from the input handshake until `out_valid` is high when the consumer keeps up: the
-#: float → fixed converters, the product, sum and rounding registers, two CORDICs, the lengths,
+#: float → fixed converters, the product, sum, scaled and rounded registers, two CORDICs, the
+#: lengths,
 #: the angles, the fixed → float converters and the result queue, less one (the handshake loads
 #: the first).
-LATENCY = FLOAT_TO_FIXED_STAGES + PRODUCT_STAGES + 2 + 2 * CORDIC_STAGES + 2
+LATENCY = FLOAT_TO_FIXED_STAGES + PRODUCT_STAGES + 3 + 2 * CORDIC_STAGES + 2
 LATENCY += FIXED_TO_FLOAT_STAGES + 1 - 1
 #: Results the queue holds while the consumer is slow (one entry of four stays free).
 QUEUE_DEPTH = 4
@@ -93,9 +93,9 @@ def quat_to_euler_pipelined(
     sum_roll_a, sum_roll_b, sum_yaw_a, sum_yaw_b, sum_sin = (
         _signed(PIPELINED.sum_width) for _ in range(5)
     )
-    # valid and out-of-domain flags beside the product, sum and rounding registers
+    # valid and out-of-domain flags beside the product, sum, scaled and rounded registers
     flags = [
-        delay_line(clk, rst, advance, source, target, PRODUCT_STAGES + 2)
+        delay_line(clk, rst, advance, source, target, PRODUCT_STAGES + 3)
         for source, target in ((valid_q, valid_cordic), (bad_q, bad_cordic))
     ]
 
@@ -121,7 +121,9 @@ def quat_to_euler_pipelined(
     scaled_sin, scaled_sin_late = _signed(width), _signed(width)
     half_gain = component.signal()
     scale = exact_multiply(clk, rst, advance, sin_pitch, half_gain, scaled_product)
-    sin_wait = data_delay(clk, advance, scaled_sin, scaled_sin_late, CORDIC_STAGES - PRODUCT_STAGES)
+    sin_wait = data_delay(
+        clk, advance, scaled_sin, scaled_sin_late, CORDIC_STAGES + 1 - PRODUCT_STAGES
+    )
     bad_wait = delay_line(clk, rst, advance, bad_cordic, bad_rolled, CORDIC_STAGES)
 
     # Pitch = atan2(sin(pitch)·gain, mean length): the lengths registered, then the CORDIC.
@@ -165,21 +167,35 @@ def quat_to_euler_pipelined(
     sum_width = PIPELINED.sum_width
     cordic_frac = PIPELINED.cordic_frac
     gain_rom = (PIPELINED.half_gain,)
+    cut_roll_a, cut_roll_b, cut_yaw_a, cut_yaw_b = (
+        _signed(sum_width + 1 - (drop - 2)) for _ in range(4)
+    )
+
+    # The sums negated where needed and cut to the CORDIC's scale plus a rounding bit, then
+    # rounded half up: two registers, so that the 93-bit negation and the rounding carry are
+    # not one path.
+    @always_seq(clk.posedge, reset=None)
+    def scale_sums():
+        if advance:
+            value = intbv(0, min=-(1 << sum_width), max=1 << sum_width)
+            value[:] = -sum_roll_a
+            cut_roll_a.next = value >> (drop - 2)
+            value[:] = sum_roll_b
+            cut_roll_b.next = value >> (drop - 2)
+            value[:] = -sum_yaw_a
+            cut_yaw_a.next = value >> (drop - 2)
+            value[:] = sum_yaw_b
+            cut_yaw_b.next = value >> (drop - 2)
 
     @always_seq(clk.posedge, reset=None)
     def rounding():
         if advance:
-            value = intbv(0, min=-(1 << sum_width), max=1 << sum_width)
             unit = intbv(0, min=-(1 << (width - 1)), max=1 << (width - 1))
             unit[cordic_frac] = 1
-            value[:] = -sum_roll_a
-            a_x.next = unit + (((value >> (drop - 2)) + 1) >> 1)
-            value[:] = sum_roll_b
-            a_y.next = ((value >> (drop - 2)) + 1) >> 1
-            value[:] = -sum_yaw_a
-            b_x.next = unit + (((value >> (drop - 2)) + 1) >> 1)
-            value[:] = sum_yaw_b
-            b_y.next = ((value >> (drop - 2)) + 1) >> 1
+            a_x.next = unit + ((cut_roll_a + 1) >> 1)
+            a_y.next = (cut_roll_b + 1) >> 1
+            b_x.next = unit + ((cut_yaw_a + 1) >> 1)
+            b_y.next = (cut_yaw_b + 1) >> 1
 
     @always_comb
     def scaling():
@@ -232,6 +248,7 @@ def quat_to_euler_pipelined(
 
     return (
         converters, valid_wait, multipliers, flags, roll_cordic, yaw_cordic, scale, sin_wait,
-        bad_wait, pitch_cordic, angle_waits, to_float, float_flags, queue, rounding, scaling,
+        bad_wait, pitch_cordic, angle_waits, to_float, float_flags, queue, scale_sums, rounding,
+        scaling,
         results_out, stages,
     )  # fmt: skip

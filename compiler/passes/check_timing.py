@@ -14,12 +14,9 @@ from __future__ import annotations
 import warnings
 from collections.abc import Iterator
 from dataclasses import dataclass
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
 from rfc.ir.model import AcceleratorKind, AcceleratorType, Block, BlockKind, Design
-from rfc.lib.arith.timing import BlockKey, blocks_in, measured_timing, suggestion
-from rfc.lib.converters.toplevel import elaboration, port_signals
-from rfc.lib.interface import typed_block
 from rfc.passes.check_hardware import (
     accelerator_signatures,
     block_function,
@@ -27,6 +24,9 @@ from rfc.passes.check_hardware import (
     takes_interfaces,
 )
 from rfc.toolchain.sta import ROUTING_FACTOR
+
+if TYPE_CHECKING:  # imported when used: it brings MyHDL
+    from rfc.lib.arith.timing import BlockKey
 
 
 class BlockTimingWarning(UserWarning):
@@ -41,9 +41,14 @@ class CheckTiming:
 
     def apply(self, design: Design) -> Design:
         """Return `design` unchanged, after warning (`BlockTimingWarning`) about slow blocks."""
+        accelerators = list(_myhdl_accelerators(design))
+        if not accelerators:
+            return design  # MyHDL stays unimported: `rfc check` of other systems starts fast
+        from rfc.lib.arith.timing import measured_timing, suggestion
+
         measured = measured_timing()
         period_ps = 1e6 / design.project.clock_mhz
-        for accelerator, block in _myhdl_accelerators(design):
+        for accelerator, block in accelerators:
             for key in _known_blocks(design, accelerator, block):
                 timing = measured.get(key)
                 if timing is None or timing.delay_ps * ROUTING_FACTOR <= period_ps:
@@ -83,6 +88,10 @@ def _known_blocks(
 
     A block that fails is not this pass's to report: the build converts it and says why.
     """
+    from rfc.lib.arith.timing import blocks_in
+    from rfc.lib.converters.toplevel import elaboration, port_signals
+    from rfc.lib.interface import typed_block
+
     project = design.project
     signatures = accelerator_signatures(block, project.bus_width, project.maxima)
     function = block_function(accelerator)

@@ -47,4 +47,3 @@ def test_the_blocks_of_a_design_are_named_with_their_parameters():
         BlockKey("float_to_fixed", "pipelined", "Q6.44"),
         BlockKey("sincos", "iterative", "Q4.44, 46 iterations, 8 guard bits"),
     )
-

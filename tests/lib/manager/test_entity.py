@@ -20,15 +20,14 @@ from rfc.lib.schedulers.spec import Algorithm, SchedulerSpec
 from rfc.runtime.protocol import Chunk, ChunkFlags, Reassembler, message_chunk
 
 WIDTH = 64
-LANES = WIDTH // 8
 
 
-def beats_of(transfer: bytes) -> list[tuple[int, int, bool]]:
-    """A transfer as (tdata, tkeep, tlast) beats, little-endian."""
+def beats_of(transfer: bytes, lanes: int) -> list[tuple[int, int, bool]]:
+    """A transfer as (tdata, tkeep, tlast) beats of `lanes` bytes, little-endian."""
     beats = []
-    for start in range(0, len(transfer), LANES):
-        part = transfer[start : start + LANES]
-        last = start + LANES >= len(transfer)
+    for start in range(0, len(transfer), lanes):
+        part = transfer[start : start + lanes]
+        last = start + lanes >= len(transfer)
         beats.append((int.from_bytes(part, "little"), (1 << len(part)) - 1, last))
     return beats
 
@@ -40,17 +39,19 @@ def run(shape: ManagerShape, mm2s: list[bytes], published: list[list[bytes]], cy
         Per subscriber the payloads it received, the chunks that left on S2MM with the cycle
         of each beat, and the cycles on which the MM2S stream moved a beat.
     """
+    lanes = shape.width // 8
     ports = port_signals(manager_ports(shape))
     clk, rst = ports["clk"], ports["rst"]
     received: list[list[bytes]] = [[] for _ in range(shape.subscribers)]
     chunks: list[bytes] = []
     s2mm_cycles: list[int] = []
     mm2s_cycles: list[int] = []
-    inputs = [beat for transfer in mm2s for beat in beats_of(transfer)]
+    inputs = [beat for transfer in mm2s for beat in beats_of(transfer, lanes)]
     queues = [
-        [beat for message in messages for beat in beats_of(message)] for messages in published
+        [beat for message in messages for beat in beats_of(message, lanes)]
+        for messages in published
     ]
-    lengths = [[len(m) for m in messages for _ in beats_of(m)] for messages in published]
+    lengths = [[len(m) for m in messages for _ in beats_of(m, lanes)] for messages in published]
 
     dut = manager_body(shape, **ports)
 
@@ -96,14 +97,14 @@ def run(shape: ManagerShape, mm2s: list[bytes], published: list[list[bytes]], cy
             for i in range(shape.subscribers):
                 if ports[f"sub{i}_tvalid"]:
                     keep = int(ports[f"sub{i}_tkeep"])
-                    data = int(ports[f"sub{i}_tdata"]).to_bytes(LANES, "little")
+                    data = int(ports[f"sub{i}_tdata"]).to_bytes(lanes, "little")
                     partial[i] += data[: bin(keep).count("1")]
                     if ports[f"sub{i}_tlast"]:
                         received[i].append(partial[i])
                         partial[i] = b""
             if ports["m_axis_s2mm_tvalid"]:
                 keep = int(ports["m_axis_s2mm_tkeep"])
-                data = int(ports["m_axis_s2mm_tdata"]).to_bytes(LANES, "little")
+                data = int(ports["m_axis_s2mm_tdata"]).to_bytes(lanes, "little")
                 chunk += data[: bin(keep).count("1")]
                 s2mm_cycles.append(cycle)
                 if ports["m_axis_s2mm_tlast"]:
@@ -119,24 +120,27 @@ def payloads(rng: random.Random, count: int) -> list[bytes]:
     return [rng.randbytes(rng.randrange(1, 60)) for _ in range(count)]
 
 
-def test_chunks_back_to_back_reach_their_subscribers_at_a_beat_every_cycle():
+@pytest.mark.parametrize("width", [8, 32, 64])
+def test_chunks_back_to_back_reach_their_subscribers_at_a_beat_every_cycle(width):
     rng = random.Random(3)
-    shape = ManagerShape(WIDTH, 2, 0, None)
+    shape = ManagerShape(width, 2, 0, None)
     sent = [(rng.randrange(2), payload) for payload in payloads(rng, 30)]
     transfers = [message_chunk(ident, payload).to_bytes() for ident, payload in sent]
-    beats = sum(len(beats_of(t)) for t in transfers)
+    beats = sum(len(beats_of(t, width // 8)) for t in transfers)
     received, _, _, moved = run(shape, transfers, [], beats + 20)
     assert received == [[p for ident, p in sent if ident == i] for i in range(2)]
     # every beat, headers included, moved on consecutive cycles
     assert moved == list(range(moved[0], moved[0] + beats))
 
 
-@pytest.mark.parametrize("algorithm", [a for a in Algorithm if not a.preemptive])
-def test_two_busy_publishers_share_the_dma_without_a_dead_cycle(algorithm):
-    rng = random.Random(str(algorithm))
+@pytest.mark.parametrize(
+    ("algorithm", "width"), [(a, 64) for a in Algorithm if not a.preemptive] + [("LRU", 8)]
+)
+def test_two_busy_publishers_share_the_dma_without_a_dead_cycle(algorithm, width):
+    rng = random.Random(f"{algorithm}{width}")
     published = [payloads(rng, 12), payloads(rng, 12)]
-    shape = ManagerShape(WIDTH, 1, 2, SchedulerSpec.create(algorithm, 2))
-    _, chunks, cycles, _ = run(shape, [], published, 500)
+    shape = ManagerShape(width, 1, 2, SchedulerSpec.create(algorithm, 2))
+    _, chunks, cycles, _ = run(shape, [], published, 2500)
     reassembler, by_publisher = Reassembler(), [[], []]
     for raw in chunks:
         chunk = Chunk.from_bytes(raw)
@@ -146,7 +150,7 @@ def test_two_busy_publishers_share_the_dma_without_a_dead_cycle(algorithm):
             by_publisher[chunk.id].append(message)
     assert by_publisher == published
     # while both publishers have beats to give, the stream never pauses between chunks
-    total = sum(len(raw) // LANES + bool(len(raw) % LANES) for raw in chunks)
+    total = sum(-(-len(raw) // (width // 8)) for raw in chunks)
     assert cycles == list(range(cycles[0], cycles[0] + total))
 
 

@@ -5,7 +5,7 @@ MM2S stream and each publisher's grant, the beats and ``tvalid`` of the S2MM str
 subscriber's stream. No combinational path then runs through the manager from one block into
 another, and the manager's own paths start and end at its registers (docs/performance.md,
 Timing). Each slice (`rfc.lib.slice`) takes a beat every cycle and adds one cycle of latency;
-its second entry lets a publisher hand on its next beat while the scheduler decides.
+the beats a slice holds let a publisher go on while the scheduler decides.
 """
 
 from __future__ import annotations

@@ -63,6 +63,8 @@ def slice_body(fields: tuple[tuple[str, int, bool], ...], **ports: Any) -> Any:
     total = sum(bits for _, bits, _ in fields)
     if total == 0:  # a message without fields: only the handshake is registered
         s_data = Signal(intbv(0)[1:])
+    elif len(fields) == 1:  # a sub-stream's data alone
+        s_data = ports[f"s_{fields[0][0]}"]
     else:
         s_data = ConcatSignal(*reversed([ports[f"s_{name}"] for name, _, _ in fields]))
     m_data = Signal(intbv(0)[max(total, 1) :])

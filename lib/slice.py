@@ -1,8 +1,9 @@
 """A register slice: one message between two blocks, every signal it hands on from a register.
 
-The top level puts one on each message handshake between a converter and an accelerator, so
-that no combinational path runs from one generated block into another (a block's timing is
-then its own, docs/performance.md, Timing). It is a skid buffer: ``s_ready``, ``m_valid`` and
+The top level puts one on each message handshake between a converter and an accelerator, and
+the manager one on each stream it shares with the DMA and the converters, so that no
+combinational path runs from one generated block into another (a block's timing is then its
+own, docs/performance.md, Timing). It is a skid buffer: ``s_ready``, ``m_valid`` and
 the fields all come from flip-flops, it takes a message every cycle while the consumer does,
 and it holds one message (and one more in its skid register while the consumer stalls), so a
 subscriber can parse the next frame while its consumer still works on the last.
@@ -25,25 +26,25 @@ def register_slice(
     held = Signal(intbv(0)[width:])
     held_valid = Signal(bool(0))
     skid = Signal(intbv(0)[width:])
-    skid_valid = Signal(bool(0))
+    room = Signal(bool(1))  # the skid register is free: kept as a flip-flop, it is `s_ready`
 
     @always_seq(clk.posedge, reset=rst)
     def step() -> None:
         if m_ready or not held_valid:  # the output register is free this cycle
-            if skid_valid:
+            if not room:
                 held.next = skid
                 held_valid.next = True
-                skid_valid.next = False
+                room.next = True
             else:
                 held.next = s_data
                 held_valid.next = s_valid
-        elif s_valid and not skid_valid:  # taken while the consumer stalls: keep it aside
+        elif s_valid and room:  # taken while the consumer stalls: keep it aside
             skid.next = s_data
-            skid_valid.next = True
+            room.next = False
 
     @always_comb
     def drive() -> None:
-        s_ready.next = not skid_valid
+        s_ready.next = room
         m_valid.next = held_valid
         m_data.next = held
 
@@ -62,6 +63,8 @@ def slice_body(fields: tuple[tuple[str, int, bool], ...], **ports: Any) -> Any:
     total = sum(bits for _, bits, _ in fields)
     if total == 0:  # a message without fields: only the handshake is registered
         s_data = Signal(intbv(0)[1:])
+    elif len(fields) == 1:  # a sub-stream's data alone
+        s_data = ports[f"s_{fields[0][0]}"]
     else:
         s_data = ConcatSignal(*reversed([ports[f"s_{name}"] for name, _, _ in fields]))
     m_data = Signal(intbv(0)[max(total, 1) :])
@@ -72,13 +75,43 @@ def slice_body(fields: tuple[tuple[str, int, bool], ...], **ports: Any) -> Any:
     outputs = []
     low = 0
     for name, bits, single in fields:
-        outputs.append(_part(m_data, low, bits, single, ports[f"m_{name}"]))
+        outputs.append(part_of(m_data, low, bits, single, ports[f"m_{name}"]))
         low += bits
     return core, outputs
 
 
 @block
-def _part(data: Any, low: int, width: int, single: bool, out: Any) -> Any:
+def parts_slice(
+    clk: Any, rst: Any, sources: list[Any], s_valid: Any, s_ready: Any, sinks: list[Any],
+    m_valid: Any, m_ready: Any,
+) -> Any:  # fmt: skip
+    """`register_slice` over several signals at once (a stream's tdata, tkeep, tlast …).
+
+    Args:
+        clk: Clock.
+        rst: Synchronous reset.
+        sources: At least two signals from the producer, handed on together.
+        s_valid: The producer's valid.
+        s_ready: Driven from a flip-flop: the slice takes the sources this cycle.
+        sinks: One signal per source, of its width, towards the consumer.
+        m_valid: Driven from a flip-flop: the sinks hold a message.
+        m_ready: The consumer takes it.
+    """
+    widths = [len(source) for source in sources]
+    data = Signal(intbv(0)[sum(widths) :])
+    core = register_slice(
+        clk, rst, ConcatSignal(*reversed(sources)), s_valid, s_ready, data, m_valid, m_ready
+    )
+    outputs = []
+    low = 0
+    for sink, bits in zip(sinks, widths, strict=True):
+        outputs.append(part_of(data, low, bits, isinstance(sink.val, bool), sink))
+        low += bits
+    return core, outputs
+
+
+@block
+def part_of(data: Any, low: int, width: int, single: bool, out: Any) -> Any:
     """Drive `out` with bits ``low`` … ``low + width - 1`` of `data`."""
     if single:
 

@@ -63,8 +63,11 @@ def chunk_beats(payload: bytes, ident: int = 0) -> list[Beat]:
     return beats
 
 
-def testbench(beats: list[Beat], messages: int, top: str) -> str:
-    """A VHDL testbench streaming `beats` into `top` and printing every output beat."""
+def testbench(beats: list[Beat], messages: int, top: str, limit: int) -> str:
+    """A VHDL testbench streaming `beats` into `top` and printing every output beat.
+
+    It stops after `messages` results, and fails after `limit` cycles.
+    """
     rom = ",\n".join(f'    (x"{b.data:016x}", x"{b.keep:02x}", \'{int(b.last)}\')' for b in beats)
     return f"""library ieee;
 use ieee.std_logic_1164.all;
@@ -142,7 +145,7 @@ begin
           end if;
         end if;
       end if;
-      assert cycle < {200 * messages + 2000} report "the system stopped" severity failure;
+      assert cycle < {limit} report "the system stopped" severity failure;
     end if;
   end process;
 end architecture plain;
@@ -182,7 +185,7 @@ def measure(variant: str, count: int, work: Path) -> None:
         )
     ]
     source = work / f"bench_{variant}.vhd"
-    source.write_text(testbench(beats, count, top))
+    source.write_text(testbench(beats, count, top, 200 * count + 2000))
     output = simulate([*files, source], "bench", work / f"ghdl_{variant}")
     first_in = next(int(line.split()[1]) for line in output.splitlines() if "FIRST_IN" in line)
     chunks, ends, current = [], [], b""

@@ -25,8 +25,12 @@ SpecArgument = Annotated[
 def check(spec: SpecArgument) -> None:
     """Validate a spec: run the whole pipeline and report the first error, if any."""
     from rfc.driver import compile_spec
+    from rfc.passes.check_timing import BlockTimingWarning
 
-    design = compile_spec(str(spec))
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", BlockTimingWarning)
+        design = compile_spec(str(spec))
+    _show(caught, (BlockTimingWarning,))
     print(f"ok: {spec}: {_summary(design)}")
 
 
@@ -63,7 +67,7 @@ def build(
             metavar="PASS",
             help="Print the IR after this pass (repeatable): parse, resolve-types, "
             "check-connections, expand-selections, flatten-messages, derive-infrastructure, "
-            "check-hardware, resolve-scheduler.",
+            "check-hardware, check-timing, resolve-scheduler.",
         ),
     ] = None,
 ) -> None:
@@ -74,6 +78,7 @@ def build(
     from rfc.lower.artifacts import BuildOptions
     from rfc.lower.system.estimate import TimingWarning
     from rfc.lower.writer import write_artifacts
+    from rfc.passes.check_timing import BlockTimingWarning
     from rfc.passes.pipeline import BUILD_PIPELINE, SOFTWARE_BUILD_PIPELINE, pass_names
 
     wanted = list(dict.fromkeys(dump_ir_after or ()))
@@ -89,24 +94,31 @@ def build(
             sys.stdout.write(f"# IR after {name}\n{format_ir(design)}")
 
     pipeline = SOFTWARE_BUILD_PIPELINE if no_hardware else BUILD_PIPELINE
-    design = compile_spec(str(spec), after=dump, pipeline=pipeline)
     options = BuildOptions(emit_ir=emit_ir, estimate=estimate, hardware=not no_hardware)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", BlockTimingWarning)
+        design = compile_spec(str(spec), after=dump, pipeline=pipeline)
     with (
         _working("estimating the logic with Yosys" if estimate else None),
-        warnings.catch_warnings(record=True) as caught,
+        warnings.catch_warnings(record=True) as lowering,
     ):
         warnings.simplefilter("always", TimingWarning)
         artifacts = lower(design, options, spec.read_text(encoding="utf-8"))
+    _show([*caught, *lowering], (TimingWarning, BlockTimingWarning))
+    write_artifacts(artifacts, output, str(output), inputs=_inputs(spec, design))
+    names = ", ".join(a.path for a in artifacts)
+    print(f"built {design.project.name} into {output}: {names}", file=sys.stderr)
+
+
+def _show(caught: list[warnings.WarningMessage], ours: tuple[type[Warning], ...]) -> None:
+    """Warnings of the `ours` kinds as ``warning: …`` lines on stderr, others as Python would."""
     for warning in caught:
-        if issubclass(warning.category, TimingWarning):
+        if issubclass(warning.category, ours):
             print(f"warning: {warning.message}", file=sys.stderr)
         else:  # not ours to word: as Python would have shown it
             warnings.showwarning(
                 warning.message, warning.category, warning.filename, warning.lineno
             )
-    write_artifacts(artifacts, output, str(output), inputs=_inputs(spec, design))
-    names = ", ".join(a.path for a in artifacts)
-    print(f"built {design.project.name} into {output}: {names}", file=sys.stderr)
 
 
 def _inputs(spec: Path, design: Design) -> tuple[Path, ...]:

@@ -6,7 +6,8 @@ HLS adapters (``<type>_ap_ctrl``) and MyHDL's package (``pck_myhdl_…``), each 
 name; an accelerator type of the same name would overwrite one. MyHDL elaborates an entity as
 a Python function of the entity's name, so a MyHDL type's lowered name is no Python keyword
 (``Class``, ``Def``). In the top level, blocks are
-instance labels beside the clock, reset and DMA stream ports and the manager; in an
+instance labels beside the clock, reset and DMA stream ports, the manager, the DMA's header
+tap and the guards, gates, slices, forks and marks named after the block they serve; in an
 accelerator's entity, ports sit beside the clock, reset and HLS handshake.
 """
 
@@ -32,12 +33,17 @@ RESERVED_SIGNALS = frozenset(
         "ap_idle",
         "ap_ready",
         "manager",
+        "chunk_tap",
     }
 )
 #: Prefixes of the top level's DMA stream ports.
 RESERVED_PREFIXES = ("s_axis_mm2s", "m_axis_s2mm")
 #: Endings of generated entities whose stem is derived, not written in the spec.
 RESERVED_SUFFIXES = ("_ap_ctrl", "_sub_subscriber", "_pub_publisher")
+#: Cells the lowering places beside a block: ``<label><ending>`` exactly…
+CELL_ENDINGS = {"_guard": "frame guard", "_drop_gate": "drop gate"}
+#: …or ``<label>_<port or stream><ending>``.
+CELL_INFIX_ENDINGS = {"_slice": "register slice", "_fork": "fork", "_marks": "stream marks"}
 
 
 def check_generated_names(design: Design) -> None:
@@ -47,10 +53,11 @@ def check_generated_names(design: Design) -> None:
         if label in RESERVED_SIGNALS or label.startswith(RESERVED_PREFIXES):
             raise RfcError(
                 f"block '{block.name}' would be instance '{label}' of the generated top level, "
-                "whose clock, reset, DMA ports or manager already take that name",
+                "whose clock, reset, DMA ports, manager or DMA header tap already take that name",
                 location=block.at("name"),
                 hint=f"rename the block, e.g. '{block.name}_0'",
             )
+    _check_cell_labels(design)
     for accelerator in design.accelerators:
         for port in accelerator.ports:
             if port.name.lower() in RESERVED_SIGNALS:
@@ -83,6 +90,35 @@ def check_generated_names(design: Design) -> None:
                 location=accelerator.at("name"),
                 hint=hint,
             )
+
+
+def _check_cell_labels(design: Design) -> None:
+    """Raise when a block's label is one the lowering gives a cell it places beside another block.
+
+    Guards, drop gates, slices, forks and stream marks are named ``<label>_…<ending>`` after the
+    block they serve, so a block called ``cam_guard`` beside a block ``cam`` would be two cells.
+    """
+    labels = {snake_identifier(block.name): block for block in design.blocks}
+    for label, block in labels.items():
+        for stem, owner in labels.items():
+            if owner is block:
+                continue
+            what = next((w for e, w in CELL_ENDINGS.items() if label == f"{stem}{e}"), None)
+            what = what or next(
+                (
+                    w
+                    for e, w in CELL_INFIX_ENDINGS.items()
+                    if label.startswith(f"{stem}_") and label.endswith(e)
+                ),
+                None,
+            )
+            if what is not None:
+                raise RfcError(
+                    f"block '{block.name}' would be instance '{label}', a name the generated top "
+                    f"level may give the {what} it places beside block '{owner.name}'",
+                    location=block.at("name"),
+                    hint=f"rename the block, e.g. '{block.name}_0'",
+                )
 
 
 def _generated_entities(design: Design) -> dict[str, str]:

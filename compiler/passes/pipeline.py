@@ -9,6 +9,7 @@ from rfc.ir.verify import verify
 from rfc.passes.base import Pass
 from rfc.passes.check_connections import CheckConnections
 from rfc.passes.check_hardware import CheckHardware
+from rfc.passes.check_timing import CheckTiming
 from rfc.passes.derive_infrastructure import DeriveInfrastructure
 from rfc.passes.expand_selections import ExpandSelections
 from rfc.passes.flatten_messages import FlattenMessages
@@ -24,7 +25,7 @@ MODEL_PIPELINE: tuple[Pass, ...] = (
     DeriveInfrastructure(),
 )
 #: `rfc check`'s: the model, then the rules its logic must obey.
-PIPELINE: tuple[Pass, ...] = (*MODEL_PIPELINE, CheckHardware())
+PIPELINE: tuple[Pass, ...] = (*MODEL_PIPELINE, CheckHardware(), CheckTiming())
 #: `rfc build`'s pipeline: the scheduler left to the DSE is chosen too (`rfc check` skips it).
 BUILD_PIPELINE: tuple[Pass, ...] = (*PIPELINE, ResolveScheduler())
 #: `rfc build --no-hardware`'s: no logic is made, so its rules are not applied.

@@ -1,16 +1,19 @@
 """Quaternion → Euler angles, pipelined: a new quaternion every cycle (initiation interval 1).
 
 The same integer steps as the iterative core (`quat_to_euler.reference` with `PIPELINED`), laid
-out in space instead of time: four float64 → fixed converters, nine exact products at once, the
-roll and yaw CORDICs side by side as unrolled pipelines, then the pitch CORDIC on their lengths.
-Every register moves on one stall enable, while the result queue at the end has room: when the
-consumer does not take results, the queue fills, then the whole pipeline holds and takes no new
-quaternion until a result leaves.
+out in space instead of time: four pipelined float64 → fixed converters, nine exact products at
+once, the roll and yaw CORDICs side by side as unrolled pipelines, then the pitch CORDIC on their
+lengths, and three pipelined fixed → float64 converters. No stage holds more than a carry chain
+or a few LUT levels of logic, so that the core keeps within half a 100 MHz period of 7-series
+cell delay (docs/performance.md). Every register moves on one stall enable, while the result
+queue at the end has room: when the consumer does not take results, the queue fills, then the
+whole pipeline holds and takes no new quaternion until a result leaves.
 
-Stages (registers), from the input handshake: components as float64, as Q2.44 (`PIPELINED`);
-exact products (limb products on the DSP48s' M and P registers, then their sums in a tree);
-the five sums; roll and yaw CORDICs (prerotation and a stage per iteration, CORDIC inputs
-rounded on the way in); lengths; pitch CORDIC; angles; the result queue (float64).
+Stages (registers), from the input handshake: the float64 → Q2.44 (`PIPELINED`) converters'
+(`rfc.lib.fixed.pipeline`, the first one takes the handshake); exact products (limb products on
+the DSP48s' M and P registers, then their sums in a tree); the five sums; the CORDIC inputs,
+cut to their scale, then rounded; roll and yaw CORDICs (prerotation and a stage per iteration);
+lengths; pitch CORDIC; angles; the fixed → float64 converters'; the result queue (float64).
 sin(pitch)·gain/2 and the roll and yaw angles wait in delay lines beside the CORDICs.
 """
 
@@ -20,9 +23,14 @@ from myhdl import ConcatSignal, Signal, always_comb, always_seq, block, intbv
 from quat_to_euler import PIPELINED
 
 from rfc.lib.arith.mac_hdl import exact_multiply, exact_multiply_stages
-from rfc.lib.arith.pipeline import data_delay, delay_line, result_queue, stage_register
+from rfc.lib.arith.pipeline import data_delay, delay_line, result_queue
 from rfc.lib.cordic.hdl import cordic_pipeline
-from rfc.lib.fixed.hdl import fixed_to_float, float_to_fixed
+from rfc.lib.fixed.pipeline import (
+    FIXED_TO_FLOAT_STAGES,
+    FLOAT_TO_FIXED_STAGES,
+    fixed_to_float_pipeline,
+    float_to_fixed_pipeline,
+)
 
 CORDIC = PIPELINED.cordic
 #: Registers a CORDIC adds: the prerotation and one per iteration.
@@ -30,9 +38,12 @@ CORDIC_STAGES = CORDIC.iterations + 1
 #: Registers of an exact product of two components (limb products, their sums).
 PRODUCT_STAGES = exact_multiply_stages(PIPELINED.component.width, PIPELINED.component.width)
 #: Cycles from the input handshake until `out_valid` is high when the consumer keeps up: the
-#: input, component, product and sum registers, two CORDICs, the lengths, the angles and the
-#: result queue, less one (the handshake loads the first).
-LATENCY = 2 + PRODUCT_STAGES + 1 + 2 * CORDIC_STAGES + 3 - 1
+#: float → fixed converters, the product, sum, scaled and rounded registers, two CORDICs, the
+#: lengths,
+#: the angles, the fixed → float converters and the result queue, less one (the handshake loads
+#: the first).
+LATENCY = FLOAT_TO_FIXED_STAGES + PRODUCT_STAGES + 3 + 2 * CORDIC_STAGES + 2
+LATENCY += FIXED_TO_FLOAT_STAGES + 1 - 1
 #: Results the queue holds while the consumer is slow (one entry of four stays free).
 QUEUE_DEPTH = 4
 #: A quaternion every cycle while the results are taken.
@@ -56,22 +67,18 @@ def quat_to_euler_pipelined(
     component = PIPELINED.component
     word = 64
 
-    # Components: float64 as received, then Q2.40 with the out-of-domain flag.
-    raw_in = [Signal(intbv(0)[word:]) for _ in range(4)]
-    fixed = [component.signal() for _ in range(4)]
+    # Components: Q2.44 with the out-of-domain flags, converted as they arrive.
     overflows = [Signal(bool(0)) for _ in range(4)]
     invalids = [Signal(bool(0)) for _ in range(4)]
     qx, qy, qz, qw = (component.signal() for _ in range(4))
-    valid_in_reg, valid_q, valid_sum = (Signal(bool(0)) for _ in range(3))
-    bad_q, bad_sum, bad_rolled, bad_angles = (Signal(bool(0)) for _ in range(4))
-    received = [
-        stage_register(clk, rst, advance, source, target)
-        for source, target in zip((x, y, z, w, in_valid), (*raw_in, valid_in_reg), strict=True)
-    ]
+    valid_q, valid_cordic = Signal(bool(0)), Signal(bool(0))
+    bad_q, bad_cordic, bad_rolled, bad_angles = (Signal(bool(0)) for _ in range(4))
     converters = [
-        float_to_fixed(bits, raw, over, nan, component)
-        for bits, raw, over, nan in zip(raw_in, fixed, overflows, invalids, strict=True)
-    ]
+        float_to_fixed_pipeline(clk, advance, bits, raw, over, nan, component)
+        for bits, raw, over, nan in zip((x, y, z, w), (qx, qy, qz, qw), overflows, invalids,
+                                        strict=True)
+    ]  # fmt: skip
+    valid_wait = delay_line(clk, rst, advance, in_valid, valid_q, FLOAT_TO_FIXED_STAGES)
 
     # The nine exact products and their five sums.
     product_width = 2 * component.width
@@ -86,13 +93,14 @@ def quat_to_euler_pipelined(
     sum_roll_a, sum_roll_b, sum_yaw_a, sum_yaw_b, sum_sin = (
         _signed(PIPELINED.sum_width) for _ in range(5)
     )
-    # valid and out-of-domain flags beside the product and sum registers
+    # valid and out-of-domain flags beside the product, sum, scaled and rounded registers
     flags = [
-        delay_line(clk, rst, advance, source, target, PRODUCT_STAGES + 1)
-        for source, target in ((valid_q, valid_sum), (bad_q, bad_sum))
+        delay_line(clk, rst, advance, source, target, PRODUCT_STAGES + 3)
+        for source, target in ((valid_q, valid_cordic), (bad_q, bad_cordic))
     ]
 
-    # CORDIC inputs (Q6.40) and sin(pitch) (Q6.36), rounded half up from the exact sums.
+    # CORDIC inputs (Q6.40) and sin(pitch) (Q6.36), registered, rounded half up from the exact
+    # sums.
     width = CORDIC.width
     a_x, a_y, b_x, b_y = (_signed(width) for _ in range(4))
     sin_pitch = component.signal()
@@ -102,10 +110,10 @@ def quat_to_euler_pipelined(
         Signal(intbv(0)[CORDIC.magnitude_width :]) for _ in range(3)
     )
     roll_cordic = cordic_pipeline(
-        clk, rst, advance, valid_sum, a_x, a_y, roll_valid, roll_angle, roll_length, CORDIC
+        clk, rst, advance, valid_cordic, a_x, a_y, roll_valid, roll_angle, roll_length, CORDIC
     )
     yaw_cordic = cordic_pipeline(
-        clk, rst, advance, valid_sum, b_x, b_y, yaw_valid, yaw_angle, yaw_length, CORDIC
+        clk, rst, advance, valid_cordic, b_x, b_y, yaw_valid, yaw_angle, yaw_length, CORDIC
     )
 
     # sin(pitch)·gain/2, rounded to the CORDIC's scale, waits beside the roll/yaw CORDICs.
@@ -114,9 +122,9 @@ def quat_to_euler_pipelined(
     half_gain = component.signal()
     scale = exact_multiply(clk, rst, advance, sin_pitch, half_gain, scaled_product)
     sin_wait = data_delay(
-        clk, advance, scaled_sin, scaled_sin_late, CORDIC_STAGES - 1 - PRODUCT_STAGES
+        clk, advance, scaled_sin, scaled_sin_late, CORDIC_STAGES + 1 - PRODUCT_STAGES
     )
-    bad_wait = delay_line(clk, rst, advance, bad_sum, bad_rolled, CORDIC_STAGES)
+    bad_wait = delay_line(clk, rst, advance, bad_cordic, bad_rolled, CORDIC_STAGES)
 
     # Pitch = atan2(sin(pitch)·gain, mean length): the lengths registered, then the CORDIC.
     lengths = Signal(intbv(0)[CORDIC.magnitude_width + 1 :])
@@ -139,8 +147,16 @@ def quat_to_euler_pipelined(
     angle_format = PIPELINED.angle
     final = [angle_format.signal() for _ in range(3)]
     valid_final, bad_final, push = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
+    valid_float, bad_float = Signal(bool(0)), Signal(bool(0))
     floats = [Signal(intbv(0)[word:]) for _ in range(3)]
-    to_float = [fixed_to_float(a, f, angle_format) for a, f in zip(final, floats, strict=True)]
+    to_float = [
+        fixed_to_float_pipeline(clk, advance, a, f, angle_format)
+        for a, f in zip(final, floats, strict=True)
+    ]
+    float_flags = [
+        delay_line(clk, rst, advance, source, target, FIXED_TO_FLOAT_STAGES)
+        for source, target in ((valid_final, valid_float), (bad_final, bad_float))
+    ]
     results = [Signal(intbv(0)[word:]) for _ in range(3)]
     result, queued = ConcatSignal(*results), Signal(intbv(0)[3 * word :])
     queue = result_queue(clk, rst, push, result, advance, out_valid, out_ready, queued, QUEUE_DEPTH)
@@ -151,20 +167,38 @@ def quat_to_euler_pipelined(
     sum_width = PIPELINED.sum_width
     cordic_frac = PIPELINED.cordic_frac
     gain_rom = (PIPELINED.half_gain,)
+    cut_roll_a, cut_roll_b, cut_yaw_a, cut_yaw_b = (
+        _signed(sum_width + 1 - (drop - 2)) for _ in range(4)
+    )
+
+    # The sums negated where needed and cut to the CORDIC's scale plus a rounding bit, then
+    # rounded half up: two registers, so that the 93-bit negation and the rounding carry are
+    # not one path.
+    @always_seq(clk.posedge, reset=None)
+    def scale_sums():
+        if advance:
+            value = intbv(0, min=-(1 << sum_width), max=1 << sum_width)
+            value[:] = -sum_roll_a
+            cut_roll_a.next = value >> (drop - 2)
+            value[:] = sum_roll_b
+            cut_roll_b.next = value >> (drop - 2)
+            value[:] = -sum_yaw_a
+            cut_yaw_a.next = value >> (drop - 2)
+            value[:] = sum_yaw_b
+            cut_yaw_b.next = value >> (drop - 2)
+
+    @always_seq(clk.posedge, reset=None)
+    def rounding():
+        if advance:
+            unit = intbv(0, min=-(1 << (width - 1)), max=1 << (width - 1))
+            unit[cordic_frac] = 1
+            a_x.next = unit + ((cut_roll_a + 1) >> 1)
+            a_y.next = (cut_roll_b + 1) >> 1
+            b_x.next = unit + ((cut_yaw_a + 1) >> 1)
+            b_y.next = (cut_yaw_b + 1) >> 1
 
     @always_comb
-    def rounding():
-        value = intbv(0, min=-(1 << sum_width), max=1 << sum_width)
-        unit = intbv(0, min=-(1 << (width - 1)), max=1 << (width - 1))
-        unit[cordic_frac] = 1
-        value[:] = -sum_roll_a
-        a_x.next = unit + (((value >> (drop - 2)) + 1) >> 1)
-        value[:] = sum_roll_b
-        a_y.next = ((value >> (drop - 2)) + 1) >> 1
-        value[:] = -sum_yaw_a
-        b_x.next = unit + (((value >> (drop - 2)) + 1) >> 1)
-        value[:] = sum_yaw_b
-        b_y.next = ((value >> (drop - 2)) + 1) >> 1
+    def scaling():
         half_gain.next = gain_rom[0]
         scaled_sin.next = ((scaled_product >> (scaled_drop - 1)) + 1) >> 1
         p_x.next = lengths >> 2
@@ -174,8 +208,12 @@ def quat_to_euler_pipelined(
         nan = intbv(0)[64:]
         nan[63:51] = 0xFFF
         in_ready.next = advance
-        push.next = advance and valid_final
-        if bad_final:
+        push.next = advance and valid_float
+        bad_q.next = (
+            overflows[0] or overflows[1] or overflows[2] or overflows[3]
+            or invalids[0] or invalids[1] or invalids[2] or invalids[3]
+        )  # fmt: skip
+        if bad_float:
             results[0].next = nan
             results[1].next = nan
             results[2].next = nan
@@ -190,15 +228,6 @@ def quat_to_euler_pipelined(
     @always_seq(clk.posedge, reset=rst)
     def stages():
         if advance:
-            qx.next = fixed[0]
-            qy.next = fixed[1]
-            qz.next = fixed[2]
-            qw.next = fixed[3]
-            bad_q.next = (
-                overflows[0] or overflows[1] or overflows[2] or overflows[3]
-                or invalids[0] or invalids[1] or invalids[2] or invalids[3]
-            )  # fmt: skip
-            valid_q.next = valid_in_reg
             sum_roll_a.next = pxx + pyy
             sum_roll_b.next = pwx + pyz
             sum_yaw_a.next = pyy + pzz
@@ -218,6 +247,8 @@ def quat_to_euler_pipelined(
             bad_final.next = bad_angles
 
     return (
-        received, converters, multipliers, flags, roll_cordic, yaw_cordic, scale, sin_wait,
-        bad_wait, pitch_cordic, angle_waits, to_float, queue, rounding, results_out, stages,
+        converters, valid_wait, multipliers, flags, roll_cordic, yaw_cordic, scale, sin_wait,
+        bad_wait, pitch_cordic, angle_waits, to_float, float_flags, queue, scale_sums, rounding,
+        scaling,
+        results_out, stages,
     )  # fmt: skip

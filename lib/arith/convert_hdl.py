@@ -1,19 +1,26 @@
-"""Pipelined (II = 1) float64 ↔ fixed converters: `rfc.lib.fixed`'s blocks between registers.
+"""Pipelined (II = 1) float64 ↔ fixed converters with valid/ready handshakes.
 
-The combinational converters sit between an input and an output register, so each takes a
-value every cycle with valid/ready handshakes and a latency of `CONVERT_LATENCY` cycles, and
-holds its result until taken; the bits are those of `rfc.lib.fixed.ieee754`.
+`rfc.lib.fixed.pipeline`'s staged datapaths on one stall enable: each takes a value every
+cycle, hands it over `FLOAT_TO_FIXED_LATENCY` (`FIXED_TO_FLOAT_LATENCY`) cycles after its input
+handshake and holds it until taken; the bits are those of `rfc.lib.fixed.ieee754`.
 """
 
 from __future__ import annotations
 
-from myhdl import Signal, always_seq, block, intbv
+from myhdl import Signal, block
 
-from rfc.lib.arith.pipeline import stall_control
-from rfc.lib.fixed.hdl import fixed_to_float, float_to_fixed
+from rfc.lib.arith.pipeline import delay_line, stall_control
+from rfc.lib.fixed.pipeline import (
+    FIXED_TO_FLOAT_STAGES,
+    FLOAT_TO_FIXED_STAGES,
+    fixed_to_float_pipeline,
+    float_to_fixed_pipeline,
+)
 
-#: Input and output registers.
-CONVERT_LATENCY = 1
+#: Cycles from the input handshake to `out_valid` (the handshake loads the first stage).
+FLOAT_TO_FIXED_LATENCY = FLOAT_TO_FIXED_STAGES - 1
+#: Cycles from the input handshake to `out_valid`.
+FIXED_TO_FLOAT_LATENCY = FIXED_TO_FLOAT_STAGES - 1
 
 
 @block
@@ -35,28 +42,11 @@ def float_to_fixed_pipelined(
         invalid: Output, the value was a NaN (`raw` is 0).
         fmt: The fixed-point format.
     """
-    held = Signal(intbv(0)[64:])
-    converted, converted_overflow, converted_invalid = (
-        fmt.signal(),
-        Signal(bool(0)),
-        Signal(bool(0)),
-    )
-    v1, v2, advance = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
-    convert = float_to_fixed(held, converted, converted_overflow, converted_invalid, fmt)
-
-    @always_seq(clk.posedge, reset=rst)
-    def stages():
-        if advance:
-            held.next = bits
-            v1.next = in_valid
-            raw.next = converted
-            overflow.next = converted_overflow
-            invalid.next = converted_invalid
-            v2.next = v1
-
-    control = stall_control(v2, out_ready, advance, in_ready, out_valid)
-
-    return convert, stages, control
+    advance, valid_last = Signal(bool(0)), Signal(bool(0))
+    datapath = float_to_fixed_pipeline(clk, advance, bits, raw, overflow, invalid, fmt)
+    valid = delay_line(clk, rst, advance, in_valid, valid_last, FLOAT_TO_FIXED_STAGES)
+    control = stall_control(valid_last, out_ready, advance, in_ready, out_valid)
+    return datapath, valid, control
 
 
 @block
@@ -74,19 +64,8 @@ def fixed_to_float_pipelined(clk, rst, in_valid, in_ready, raw, out_valid, out_r
         bits: Output, 64-bit IEEE-754 pattern.
         fmt: The fixed-point format.
     """
-    held = fmt.signal()
-    converted = Signal(intbv(0)[64:])
-    v1, v2, advance = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
-    convert = fixed_to_float(held, converted, fmt)
-
-    @always_seq(clk.posedge, reset=rst)
-    def stages():
-        if advance:
-            held.next = raw
-            v1.next = in_valid
-            bits.next = converted
-            v2.next = v1
-
-    control = stall_control(v2, out_ready, advance, in_ready, out_valid)
-
-    return convert, stages, control
+    advance, valid_last = Signal(bool(0)), Signal(bool(0))
+    datapath = fixed_to_float_pipeline(clk, advance, raw, bits, fmt)
+    valid = delay_line(clk, rst, advance, in_valid, valid_last, FIXED_TO_FLOAT_STAGES)
+    control = stall_control(valid_last, out_ready, advance, in_ready, out_valid)
+    return datapath, valid, control

@@ -68,6 +68,7 @@ def chunk_demux(
     last_header_beat = header_beats - 1
     whole = FLAG_START | FLAG_END
     full = 2**lanes - 1
+    popcounts = tuple(bin(keep).count("1") for keep in range(2**lanes))
     t_state = enum("HEADER", "ROUTE", "DROP", "EMPTY")  # VHDL: no process may share these names
 
     state = Signal(t_state.HEADER)
@@ -75,10 +76,10 @@ def chunk_demux(
     stored = Signal(intbv(0)[8 * HEADER_BYTES :])
     word = Signal(intbv(0)[8 * HEADER_BYTES :])
     target = Signal(intbv(0, min=0, max=max(subscribers, 2)))
-    expected = Signal(intbv(0)[32:])
-    received = Signal(intbv(0)[33:])
+    left = Signal(intbv(0)[33:])  # payload bytes the header announced and no beat brought yet
     beat_bytes = Signal(intbv(0, min=0, max=lanes + 1))
     errors = Signal(intbv(0)[ERROR_COUNT_BITS:])
+    faulted = Signal(bool(0))  # counted a cycle later, so the check and the count run apart
     asked = Signal(bool(0))
     answering = status_request is not None
 
@@ -94,11 +95,8 @@ def chunk_demux(
 
     @always_comb
     def count_lanes():
-        total = 0
-        for lane in range(lanes):
-            if s_tkeep[lane]:
-                total += 1
-        beat_bytes.next = total
+        # A table of every tkeep (two levels of LUTs), not a chain of adders.
+        beat_bytes.next = popcounts[s_tkeep]
 
     @always_comb
     def drive_outputs():
@@ -150,8 +148,7 @@ def chunk_demux(
                 if beat == last_header_beat:
                     stored.next = 0
                     beat.next = 0
-                    expected.next = word[64:32]
-                    received.next = 0
+                    left.next = word[64:32]
                     good = word[16:0] < subscribers and word[32:16] == whole
                     if good:
                         target.next = word[16:0]
@@ -179,16 +176,17 @@ def chunk_demux(
             if s_tvalid and m_tready[target]:
                 if s_tlast:
                     state.next = t_state.HEADER
-                    if received + beat_bytes != expected:
+                    if left != beat_bytes:
                         fault = True
                 else:
-                    received.next = received + beat_bytes
+                    left.next = left - beat_bytes
         elif state == t_state.DROP:
             if s_tvalid and s_tlast:
                 state.next = t_state.HEADER
         elif m_tready[target]:
             state.next = t_state.HEADER
-        if fault and errors != 2**ERROR_COUNT_BITS - 1:
+        faulted.next = fault
+        if faulted and errors != 2**ERROR_COUNT_BITS - 1:
             errors.next = errors + 1
 
     if answering:

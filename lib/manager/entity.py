@@ -6,7 +6,9 @@ module builds the entity in between: ports ``sub<i>_t*`` towards subscriber i (i
 ``pub<j>_t*`` and ``pub<j>_length`` from publisher j (its ``m_axis`` and ``frame_length``), the
 DMA's two streams ``s_axis_mm2s_*`` and ``m_axis_s2mm_*``, ``error_count``, and the drop
 counters of each subscriber's gate or guard, ``status_sub<i>_<reason>``, which the manager
-sends to the processor in a status chunk when asked (`rfc.lib.manager.status`).
+sends to the processor in a status chunk when asked (`rfc.lib.manager.status`). Every stream
+crosses a register slice at the entity's edge (`rfc.lib.manager.boundary`), so each signal
+the manager hands on comes from a flip-flop.
 """
 
 from __future__ import annotations
@@ -14,20 +16,25 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from myhdl import ConcatSignal, Signal, always, block, intbv
+from myhdl import ConcatSignal, Signal, always, always_comb, block, intbv
 
 from rfc.lib.converters.malformed import DROP_REASONS, status_port
 from rfc.lib.converters.ports import COUNTER_BITS, Direction, Port, PortRole
 from rfc.lib.converters.toplevel import top_block
 from rfc.lib.converters.wiring import follow, index_bit
+from rfc.lib.manager.boundary import routed_slice, slice_chain, stream_like
 from rfc.lib.manager.demux import ERROR_COUNT_BITS, chunk_demux
 from rfc.lib.manager.header import BusGeometry
 from rfc.lib.manager.mux import chunk_mux
 from rfc.lib.manager.status import status_inserter
 from rfc.lib.schedulers.spec import AnySchedulerSpec
+from rfc.lib.slice import parts_slice
 
 #: Bits of a publisher's frame-length input.
 LENGTH_BITS = 32
+#: Register slices in a row in front of each publisher: room for four beats, so a publisher
+#: finishes its frame and starts the next while the scheduler still grants the one before.
+PUBLISHER_SLICES = 2
 
 
 @dataclass(frozen=True)
@@ -103,42 +110,56 @@ def manager_top(shape: ManagerShape, name: str) -> Any:
 def manager_body(shape: ManagerShape, **ports: Any) -> Any:
     """The demultiplexer fanned out to the subscribers, the multiplexer over the publishers."""
     width, lanes = shape.width, shape.width // 8
+    clk, rst = ports["clk"], ports["rst"]
     parts: list[Any] = []
     n_sub, n_pub = shape.subscribers, shape.publishers
+
+    # The DMA's MM2S stream, registered on the way in.
+    dma_in = [ports[f"s_axis_mm2s_{name}"] for name in ("tdata", "tkeep", "tlast")]
+    mm2s = stream_like(dma_in)
+    mm2s_valid, mm2s_ready = Signal(bool(0)), Signal(bool(0))
+    parts.append(
+        parts_slice(
+            clk, rst, dma_in, ports["s_axis_mm2s_tvalid"], ports["s_axis_mm2s_tready"], mm2s,
+            mm2s_valid, mm2s_ready,
+        )
+    )  # fmt: skip
 
     # With no subscriber the DMA's stream still has to be read (MyHDL's std_logic ports need
     # every input used): a demultiplexer for one subscriber that is always ready drains it.
     # The runtime never sends to the logic then, as no subscriber id exists.
     fanout = max(n_sub, 1)
-    tdata = Signal(intbv(0)[width:])
-    tkeep = Signal(intbv(0)[lanes:])
-    tlast = Signal(bool(0))
+    beat = stream_like(mm2s)
     tvalid = Signal(intbv(0)[fanout:])
+    taken = Signal(bool(0))
+    tready = Signal(intbv(0)[fanout:])
     request = Signal(bool(0))
-    if n_sub:
-        tready, single = _vector([ports[f"sub{i}_tready"] for i in range(n_sub)])
-        if single is not None:
-            parts.append(follow(single, tready))
-    else:
-        tready = Signal(intbv(1)[1:])
+    parts.append(spread_bit(taken, tready))
     parts.append(
         chunk_demux(
-            ports["clk"], ports["rst"], ports["s_axis_mm2s_tdata"],
-            ports["s_axis_mm2s_tkeep"], ports["s_axis_mm2s_tvalid"],
-            ports["s_axis_mm2s_tready"], ports["s_axis_mm2s_tlast"], tdata, tkeep, tlast,
-            tvalid, tready, ports["error_count"], width=width, subscribers=fanout,
-            status_request=request,
+            clk, rst, *mm2s[:2], mm2s_valid, mm2s_ready, mm2s[2], *beat, tvalid, tready,
+            ports["error_count"], width=width, subscribers=fanout, status_request=request,
         )
     )  # fmt: skip
+    # Registered on the way out to the subscribers.
+    routed = stream_like(beat)
+    sub_valid = Signal(intbv(0)[fanout:])
+    if n_sub:
+        sub_ready, single = _vector([ports[f"sub{i}_tready"] for i in range(n_sub)])
+        if single is not None:
+            parts.append(follow(single, sub_ready))
+    else:
+        sub_ready = Signal(intbv(1)[1:])
+    parts.append(routed_slice(clk, rst, beat, tvalid, taken, routed, sub_valid, sub_ready))
     for i in range(n_sub):
         parts += [
-            follow(tdata, ports[f"sub{i}_tdata"]),
-            follow(tkeep, ports[f"sub{i}_tkeep"]),
-            follow(tlast, ports[f"sub{i}_tlast"]),
-            index_bit(tvalid, i, ports[f"sub{i}_tvalid"]),
+            follow(routed[0], ports[f"sub{i}_tdata"]),
+            follow(routed[1], ports[f"sub{i}_tkeep"]),
+            follow(routed[2], ports[f"sub{i}_tlast"]),
+            index_bit(sub_valid, i, ports[f"sub{i}_tvalid"]),
         ]
 
-    # The publishers' chunks reach the DMA through the status inserter.
+    # The publishers' chunks reach the DMA through the status inserter and a last slice.
     out = {
         "tdata": Signal(intbv(0)[width:]),
         "tkeep": Signal(intbv(0)[lanes:]),
@@ -146,47 +167,94 @@ def manager_body(shape: ManagerShape, **ports: Any) -> Any:
         "tlast": Signal(bool(0)),
     }
     out_ready = Signal(bool(0))
+    s2mm = {name: Signal(sig.val) for name, sig in out.items()}
+    s2mm_ready = Signal(bool(0))
     counters = None
     if n_sub:
         counters, single = _vector([ports[name] for name in status_inputs(n_sub)])
         assert single is None  # four reasons per subscriber
     parts.append(
         status_inserter(
-            ports["clk"], ports["rst"], request, counters, out["tdata"], out["tkeep"],
-            out["tvalid"], out_ready, out["tlast"], ports["m_axis_s2mm_tdata"],
-            ports["m_axis_s2mm_tkeep"], ports["m_axis_s2mm_tvalid"],
-            ports["m_axis_s2mm_tready"], ports["m_axis_s2mm_tlast"], width=width,
-            count=len(status_inputs(n_sub)),
+            clk, rst, request, counters, out["tdata"], out["tkeep"], out["tvalid"], out_ready,
+            out["tlast"], s2mm["tdata"], s2mm["tkeep"], s2mm["tvalid"], s2mm_ready,
+            s2mm["tlast"], width=width, count=len(status_inputs(n_sub)),
+        )
+    )  # fmt: skip
+    dma_out = [ports[f"m_axis_s2mm_{name}"] for name in ("tdata", "tkeep", "tlast")]
+    parts.append(
+        parts_slice(
+            clk, rst, [s2mm["tdata"], s2mm["tkeep"], s2mm["tlast"]], s2mm["tvalid"], s2mm_ready,
+            dma_out, ports["m_axis_s2mm_tvalid"], ports["m_axis_s2mm_tready"],
         )
     )  # fmt: skip
 
     if n_pub:
-        inputs = shape.scheduler.n
-        grant = Signal(intbv(0)[inputs:])
-        idle = {  # the inputs beyond the publishers never request
-            "tdata": width, "tkeep": lanes, "tvalid": 1, "tlast": 1, "length": LENGTH_BITS
-        }  # fmt: skip
-        gathered = {}
-        for name, bits in idle.items():
-            signals = [ports[f"pub{i}_{name}"] for i in range(n_pub)]
-            signals += [Signal(intbv(0)[bits:]) for _ in range(inputs - n_pub)]
-            gathered[name], single = _vector(signals)
-            if single is not None:
-                parts.append(follow(single, gathered[name]))
+        parts.append(publisher_inputs(shape, clk, rst, ports, out, out_ready))
+    else:
+        parts.append(silent_output(clk, out["tdata"], out["tkeep"], out["tvalid"], out["tlast"]))
+    return parts
+
+
+@block
+def publisher_inputs(
+    shape: ManagerShape, clk: Any, rst: Any, ports: dict[str, Any], out: dict[str, Any],
+    out_ready: Any,
+) -> Any:  # fmt: skip
+    """Each publisher's stream and length through a slice, then the multiplexer over them."""
+    assert shape.scheduler is not None
+    width, lanes, n_pub = shape.width, shape.width // 8, shape.publishers
+    inputs = shape.scheduler.n
+    parts: list[Any] = []
+    names = ("tdata", "tkeep", "tlast", "length")
+    sliced: dict[str, list[Any]] = {name: [] for name in (*names, "tvalid", "tready")}
+    for i in range(n_pub):
+        sources = [ports[f"pub{i}_{name}"] for name in names]
+        sinks = stream_like(sources)
+        valid, ready = Signal(bool(0)), Signal(bool(0))
         parts.append(
-            chunk_mux(
-                ports["clk"], ports["rst"], gathered["tdata"], gathered["tkeep"],
-                gathered["tvalid"], grant, gathered["tlast"], gathered["length"],
-                out["tdata"], out["tkeep"], out["tvalid"], out_ready, out["tlast"],
-                width=width, scheduler=shape.scheduler,
+            slice_chain(
+                clk, rst, sources, ports[f"pub{i}_tvalid"], ports[f"pub{i}_tready"], sinks,
+                valid, ready, stages=PUBLISHER_SLICES,
             )
         )  # fmt: skip
-        parts += [index_bit(grant, i, ports[f"pub{i}_tready"]) for i in range(n_pub)]
-    else:
-        parts.append(
-            silent_output(ports["clk"], out["tdata"], out["tkeep"], out["tvalid"], out["tlast"])
+        for name, sink in zip(names, sinks, strict=True):
+            sliced[name].append(sink)
+        sliced["tvalid"].append(valid)
+        sliced["tready"].append(ready)
+    grant = Signal(intbv(0)[inputs:])
+    idle = {  # the inputs beyond the publishers never request
+        "tdata": width, "tkeep": lanes, "tvalid": 1, "tlast": 1, "length": LENGTH_BITS
+    }  # fmt: skip
+    gathered = {}
+    for name, bits in idle.items():
+        signals = sliced[name] + [Signal(intbv(0)[bits:]) for _ in range(inputs - n_pub)]
+        gathered[name], single = _vector(signals)
+        if single is not None:
+            parts.append(follow(single, gathered[name]))
+    parts.append(
+        chunk_mux(
+            clk, rst, gathered["tdata"], gathered["tkeep"], gathered["tvalid"], grant,
+            gathered["tlast"], gathered["length"], out["tdata"], out["tkeep"], out["tvalid"],
+            out_ready, out["tlast"], width=width, scheduler=shape.scheduler,
         )
+    )  # fmt: skip
+    parts += [index_bit(grant, i, sliced["tready"][i]) for i in range(n_pub)]
     return parts
+
+
+@block
+def spread_bit(bit: Any, vector: Any) -> Any:
+    """Drive every bit of `vector` with `bit`."""
+    ones = 2 ** len(vector) - 1
+
+    @always_comb
+    def copy():
+        if bit:
+            vector.next = ones
+        else:
+            vector.next = 0
+
+    return copy
 
 
 def _vector(signals: list[Any]) -> tuple[Any, Any]:

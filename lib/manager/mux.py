@@ -4,7 +4,8 @@ The publishers' `tvalid` are the scheduler's requests and their `tlast` its task
 scheduler's `offer` names the publisher that holds the channel. For each chunk the mux writes
 the 8-byte header (id, flags, the publisher's frame length) and then lets the holder's beats
 through: the scheduler's `ready` input is high only then, so its `grant` drives exactly the
-holder's `tready`.
+holder's `tready`. A chunk's header enters in the cycle the scheduler offers the channel, right
+behind the previous chunk's last beat, so chunks leave back to back.
 
 Preemption: when the offer moves to another publisher in the middle of a message, the chunk
 ends and the rest of the message follows later in chunks of its own (START clear). AXI-Stream
@@ -77,7 +78,7 @@ def chunk_mux(
     n = scheduler.n
     preemptive = is_preemptive(scheduler)
     flags_whole = FLAG_START | FLAG_END
-    t_state = enum("IDLE", "HEADER", "PAYLOAD", "ENDING")  # no process may share these names
+    t_state = enum("IDLE", "HEADER", "PAYLOAD")  # no process may share these names
 
     ready = Signal(bool(0))
     offer = Signal(intbv(0)[n:])
@@ -86,15 +87,17 @@ def chunk_mux(
     owner = Signal(intbv(0, min=0, max=max(n, 2)))
     offered = Signal(intbv(0, min=0, max=max(n, 2)))
     header = Signal(intbv(0)[8 * HEADER_BYTES :])
+    opening = Signal(intbv(0)[8 * HEADER_BYTES :])
     beat = Signal(intbv(0, min=0, max=header_beats + 1))
     in_progress = Signal(intbv(0)[n:])
-    # The 2-entry buffer: head first.
+    # The 2-entry buffer, head first; an entry's `last` says it ends its chunk.
     count = Signal(intbv(0, min=0, max=3))
     head_data = Signal(intbv(0)[width:])
     head_keep = Signal(intbv(0)[lanes:])
+    head_last = Signal(bool(0))
     tail_data = Signal(intbv(0)[width:])
     tail_keep = Signal(intbv(0)[lanes:])
-    message_end = Signal(bool(0))
+    tail_last = Signal(bool(0))
     # The holder's lanes, and what enters the buffer this cycle.
     owner_data = Signal(intbv(0)[width:])
     owner_keep = Signal(intbv(0)[lanes:])
@@ -104,7 +107,6 @@ def chunk_mux(
     space = Signal(bool(0))
     leaving = Signal(bool(0))
     out_valid = Signal(bool(0))
-    out_last = Signal(bool(0))
 
     arbiter = scheduler_block(scheduler)(
         clk, rst, s_tvalid, s_tlast, ready, offer, grant, scheduler
@@ -133,17 +135,35 @@ def chunk_mux(
         offered.next = chosen
 
     @always_comb
+    def open_chunk():
+        # The header of a chunk of the offered publisher: id, flags, its frame length.
+        flags = intbv(0)[16:]
+        if preemptive:
+            if not in_progress[offered]:
+                flags[:] = FLAG_START
+        else:
+            flags[:] = flags_whole
+        assembled = intbv(0)[8 * HEADER_BYTES :]
+        assembled[16:0] = offered
+        assembled[32:16] = flags
+        for index in range(n):
+            if offered == index:
+                assembled[64:32] = s_length[(index + 1) * 32 : index * 32]
+        opening.next = assembled
+
+    @always_comb
     def present():
-        valid = count == 2 or (count == 1 and state == t_state.ENDING)
+        # A beat leaves once it is known to end its chunk or its successor is held: the
+        # last beat held can then always carry `tlast` when a preemption ends the chunk.
+        valid = count == 2 or (count == 1 and head_last)
         out_valid.next = valid
-        out_last.next = count == 1 and state == t_state.ENDING
         leaving.next = valid and m_tready
         space.next = count < 2 or (valid and m_tready)
 
     @always_comb
     def drive_outputs():
         m_tvalid.next = out_valid
-        m_tlast.next = out_last
+        m_tlast.next = head_last
         m_tdata.next = head_data
         m_tkeep.next = head_keep
         ready.next = state == t_state.PAYLOAD and owner_offered and space
@@ -151,81 +171,89 @@ def chunk_mux(
 
     @always_seq(clk.posedge, reset=rst)
     def sequence():
-        # What enters the buffer this cycle, if anything.
+        # What enters the buffer this cycle, if anything, and whether the chunk ends on the
+        # youngest beat already held (a preemption, or a null last beat folded onto it).
         enter = False
+        enter_last = False
+        ending = False
         enter_data = intbv(0)[width:]
         enter_keep = intbv(0)[lanes:]
-        if state == t_state.HEADER and space:
-            enter = True
-            for index in range(header_beats):
-                if beat == index:
-                    enter_data[:] = header[(index + 1) * width : index * width]
-            enter_keep[:] = 2**lanes - 1
-            if beat == header_beats - 1:
-                state.next = t_state.PAYLOAD
-            beat.next = beat + 1
-        elif state == t_state.PAYLOAD:
-            if grant != 0:
-                if owner_last:
-                    message_end.next = True
-                    state.next = t_state.ENDING
-                # A null beat (tkeep empty) only carries tlast: it folds onto the held beat.
-                if owner_keep != 0 or not owner_last:
-                    enter = True
-                    enter_data[:] = owner_data
-                    enter_keep[:] = owner_keep
-            elif switch:
-                state.next = t_state.ENDING
-        elif state == t_state.IDLE and count == 0 and offer != 0:
-            owner.next = offered
-            beat.next = 0
-            message_end.next = False
-            flags = intbv(0)[16:]
-            if preemptive:
-                if not in_progress[offered]:
-                    flags[:] = FLAG_START
+        if state == t_state.IDLE:
+            # The next chunk opens as soon as the scheduler offers, behind the last one's end.
+            if offer != 0 and space:
+                owner.next = offered
+                header.next = opening
+                enter = True
+                enter_data[:] = opening[width:0]
+                enter_keep[:] = 2**lanes - 1
+                for index in range(n):  # constant bit indices: no memory to infer
+                    if offered == index:
+                        in_progress.next[index] = True
+                if header_beats == 1:
+                    state.next = t_state.PAYLOAD
+                else:
+                    beat.next = 1
+                    state.next = t_state.HEADER
+        elif state == t_state.HEADER:
+            if space:
+                enter = True
+                for index in range(1, header_beats):
+                    if beat == index:
+                        enter_data[:] = header[(index + 1) * width : index * width]
+                enter_keep[:] = 2**lanes - 1
+                if beat == header_beats - 1:
+                    state.next = t_state.PAYLOAD
+                beat.next = beat + 1
+        elif grant != 0:
+            if owner_last:
+                state.next = t_state.IDLE
+                for index in range(n):
+                    if owner == index:
+                        in_progress.next[index] = False
+            # A null beat (tkeep empty) only carries tlast: it folds onto the held beat.
+            if owner_keep != 0 or not owner_last:
+                enter = True
+                enter_last = bool(owner_last)
+                enter_data[:] = owner_data
+                enter_keep[:] = owner_keep
             else:
-                flags[:] = flags_whole
-            word = intbv(0)[8 * HEADER_BYTES :]
-            word[16:0] = offered
-            word[32:16] = flags
-            for index in range(n):
-                if offered == index:
-                    word[64:32] = s_length[(index + 1) * 32 : index * 32]
-            header.next = word
-            for index in range(n):  # constant bit indices: no memory for synthesis to infer
-                if offered == index:
-                    in_progress.next[index] = True
-            state.next = t_state.HEADER
+                ending = True
+        elif switch:
+            ending = True
+            state.next = t_state.IDLE
 
         # The buffer: the head leaves, the entering beat joins behind what stays.
         if leaving:
             if count == 2:
                 head_data.next = tail_data
                 head_keep.next = tail_keep
+                head_last.next = tail_last or ending
                 if enter:
                     tail_data.next = enter_data
                     tail_keep.next = enter_keep
+                    tail_last.next = enter_last
                 else:
                     count.next = 1
             elif enter:
                 head_data.next = enter_data
                 head_keep.next = enter_keep
+                head_last.next = enter_last
             else:
                 count.next = 0
-                if out_last:
-                    state.next = t_state.IDLE
-                    if message_end:
-                        for index in range(n):
-                            if owner == index:
-                                in_progress.next[index] = False
         elif enter:
             if count == 0:
                 head_data.next = enter_data
                 head_keep.next = enter_keep
+                head_last.next = enter_last
             else:
                 tail_data.next = enter_data
                 tail_keep.next = enter_keep
+                tail_last.next = enter_last
             count.next = count + 1
+        elif ending:
+            if count == 2:
+                tail_last.next = True
+            else:
+                head_last.next = True
 
-    return arbiter, select_holder, find_offered, present, drive_outputs, sequence
+    return arbiter, select_holder, find_offered, open_chunk, present, drive_outputs, sequence

@@ -1,9 +1,12 @@
-"""Registered boundaries: a register slice on each message handed from one block to another.
+"""Registered boundaries: a register slice on each handshake handed from one block to another.
 
 Between a converter and an accelerator the top level puts `rfc.lib.slice` on the message's
 fields and valid/ready, so that everything one block hands the next comes from a flip-flop and
 no combinational path crosses from one block into another. A message with strings or
-sequences (sub-streams with handshakes of their own) is wired directly, as before.
+primitive sequences gets a slice on each sub-stream instead (its beats, ``tvalid`` and
+``tready``, a beat every cycle); its record (the fields, the lengths the consumer reads while
+the bytes stream, and ``msg_valid``/``msg_ready``) is wired directly, as are messages with
+sequences of messages (element channels).
 """
 
 from __future__ import annotations
@@ -18,6 +21,10 @@ from rfc.lower.system.top import Interface, Terminal, TopBuilder
 _VALID, _READY = f"{MESSAGE}_valid", f"{MESSAGE}_ready"
 #: Names that belong to a handshake of their own (a sub-stream's), not to the message's fields.
 _HANDSHAKE_ENDINGS = ("_valid", "_ready", "_last")
+#: A sub-stream's beat and its handshake, as suffixes of its pins' names.
+_BEAT, _TVALID, _TREADY = ("_tdata", "_tkeep", "_tlast"), "_tvalid", "_tready"
+
+Fields = tuple[tuple[str, int, bool], ...]
 
 
 class RegisterSlices:
@@ -31,21 +38,34 @@ class RegisterSlices:
     def __init__(self, prefix: str, directory: Path) -> None:
         self.prefix, self.directory = prefix, directory
         self.components: list[Component] = []
-        self._by_shape: dict[tuple[tuple[str, int, bool], ...], Component] = {}
+        self._by_shape: dict[Fields, Component] = {}
 
     def insert(self, builder: TopBuilder, target: Interface, label: str) -> Interface:
-        """Put a slice labelled `label` in front of `target`, wired to it.
+        """Put the slices labelled from `label` in front of `target`, wired to it.
 
         Returns:
-            The slice's input side, to wire the producer to; `target` itself when the message
-            has sub-streams, which are not sliced.
+            The interface to wire the producer to: the slices' input sides where there are
+            slices, `target`'s own pins elsewhere.
         """
-        if not _sliceable(builder, target):
-            return target
+        if _sliceable(builder, target):
+            names = [n for n in target if n not in (_VALID, _READY)]
+            return self._slice(builder, target, label, names, _VALID, _READY)
+        streams = _streams(builder, target)
+        interface = dict(target)
+        for stream in streams:
+            beat = [f"{stream}{suffix}" for suffix in _BEAT if f"{stream}{suffix}" in target]
+            valid, ready = f"{stream}{_TVALID}", f"{stream}{_TREADY}"
+            interface |= self._slice(builder, target, f"{label}_{stream}", beat, valid, ready)
+        return interface
+
+    def _slice(
+        self, builder: TopBuilder, target: Interface, label: str, names: list[str], valid: str,
+        ready: str,
+    ) -> dict[str, Terminal]:  # fmt: skip
+        """One slice over the pins `names` of `target` and its handshake `valid`/`ready`."""
         fields = tuple(
-            (name, builder.port(t).bits, builder.port(t).wire)
-            for name, t in target.items()
-            if name not in (_VALID, _READY)
+            (name, builder.port(target[name]).bits, builder.port(target[name]).wire)
+            for name in names
         )
         component = self._by_shape.get(fields)
         if component is None:
@@ -56,10 +76,10 @@ class RegisterSlices:
         builder.cell(label, component.entity)
         for name, _, _ in fields:
             builder.wire(Terminal(label, f"m_{name}"), target[name])
-        builder.wire(Terminal(label, "m_valid"), target[_VALID])
-        builder.wire(target[_READY], Terminal(label, "m_ready"))
+        builder.wire(Terminal(label, "m_valid"), target[valid])
+        builder.wire(target[ready], Terminal(label, "m_ready"))
         inputs = {name: Terminal(label, f"s_{name}") for name, _, _ in fields}
-        return {**inputs, _VALID: Terminal(label, "s_valid"), _READY: Terminal(label, "s_ready")}
+        return {**inputs, valid: Terminal(label, "s_valid"), ready: Terminal(label, "s_ready")}
 
 
 def _sliceable(builder: TopBuilder, target: Interface) -> bool:
@@ -70,3 +90,23 @@ def _sliceable(builder: TopBuilder, target: Interface) -> bool:
     if any(n.endswith(_HANDSHAKE_ENDINGS) for n in others):
         return False
     return all(builder.port(target[n]).mode is Mode.IN for n in others)
+
+
+def _streams(builder: TopBuilder, target: Interface) -> list[str]:
+    """The sub-streams of a message without element channels, by name; none otherwise."""
+    channels = [n for n in target if n.endswith(("_valid", "_ready")) and n not in (_VALID, _READY)]
+    if channels:
+        return []
+    streams = [n.removesuffix(_TVALID) for n in target if n.endswith(_TVALID)]
+    return [
+        stream
+        for stream in streams
+        if f"{stream}_tdata" in target
+        and f"{stream}{_TREADY}" in target
+        and builder.port(target[f"{stream}{_TREADY}"]).mode is Mode.OUT
+        and all(
+            builder.port(target[f"{stream}{suffix}"]).mode is Mode.IN
+            for suffix in (*_BEAT, _TVALID)
+            if f"{stream}{suffix}" in target
+        )
+    ]

@@ -6,7 +6,8 @@ synthesized netlist and in Verilator on rfc's Verilog: every frame must come out
 serializes the message (fields outside the selection at their defaults), on the same cycles in
 every reading, and GHDL must synthesize the converters without a warning (no latch, no
 unassigned bit). A representative subset: every bus width with each middleware, selections
-whole, included and excluded; `tools/readings_matrix.py` runs the whole matrix.
+whole, included and excluded, and one case of each other type of the matrix (PointCloud2 on
+each middleware); `tools/readings_matrix.py` runs the whole matrix.
 """
 
 from __future__ import annotations
@@ -21,6 +22,8 @@ from rfc.messages.rosbags_adapter import Middleware
 from tests.hdl.converters.readings import READINGS, SPAN, Config, random_bag, run_reading
 
 IMAGE, JOINTS = "sensor_msgs/msg/CompressedImage", "sensor_msgs/msg/JointState"
+SCAN, CLOUD = "sensor_msgs/msg/LaserScan", "sensor_msgs/msg/PointCloud2"
+POSE = "geometry_msgs/msg/PoseStamped"
 ROS1, ROS2 = Middleware.ROS1, Middleware.ROS2
 CONFIGS = [
     Config(IMAGE, ROS2, 8),
@@ -29,6 +32,10 @@ CONFIGS = [
     Config(JOINTS, ROS1, 8, include=("name", "effort")),
     Config(JOINTS, ROS2, 32, exclude=("header.*",)),
     Config(JOINTS, ROS1, 64),
+    Config(SCAN, ROS2, 32, exclude=("header.frame_id",)),
+    Config(CLOUD, ROS2, 8),
+    Config(CLOUD, ROS1, 64, exclude=("header.frame_id",)),
+    Config(POSE, ROS1, 32),
 ]
 
 

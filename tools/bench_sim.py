@@ -240,7 +240,10 @@ class Plain:
         work = self.folder / "ghdl"
         if self._ghdl_work is None:
             tb = self.folder / "rfc_plain_tb.vhd"
-            tb.write_text(PLAIN_TB.read_text().replace("RFC_TOP", self.top.top))
+            text = PLAIN_TB.read_text().replace("RFC_TOP", self.top.top)
+            if self.top.busy:
+                text = text.replace("-- RFC_BUSY", "busy => busy,")
+            tb.write_text(text)
             analyze([*self.top.sources, tb], work, "rfc_plain_tb")
             self._ghdl_work = work
         source = self.folder / "stimulus.txt"
@@ -248,6 +251,7 @@ class Plain:
         source.write_text(ghdl_stimulus(stimulus))
         options = [f"--std={STANDARD}", "-fsynopsys", f"--workdir={work}"]
         generics = [f"-gstimulus={source}", f"-gresults={results}", f"-glanes={self.lanes}"]
+        generics.append(f"-gbusy_bits={max(len(self.top.busy), 1)}")
         start = time.perf_counter()
         subprocess.run(
             ["ghdl", "-r", *options, "rfc_plain_tb", *generics, "--ieee-asserts=disable"],

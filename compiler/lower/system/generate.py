@@ -23,6 +23,7 @@ from rfc.lib.manager.entity import ManagerShape
 from rfc.lib.schedulers.spec import DEFAULT_IDLE, AnySchedulerSpec, SchedulerSpec
 from rfc.lower.netlist import EntityDecl, Mode, Netlist, PortDecl, constant
 from rfc.lower.system.accelerators import AcceleratorHardware, HlsCore, accelerator_hardware
+from rfc.lower.system.busy import busy_port, watch_blocks, watched_blocks
 from rfc.lower.system.components import (
     Component,
     converter_component,
@@ -62,6 +63,8 @@ class SystemHardware:
         accelerators: The hardware of each accelerator type in the logic, by type name.
         limits: The maxima of strings and sequences the converters were built for.
         buffers: The FIFOs in front of each publisher that takes strings or sequences, by block.
+        busy: The blocks the top level's ``busy`` bits watch, bit 0 first
+            (`rfc.lower.system.busy`).
     """
 
     top: str
@@ -76,6 +79,7 @@ class SystemHardware:
     accelerators: Mapping[str, AcceleratorHardware]
     limits: Limits
     buffers: Mapping[str, tuple[Buffer, ...]]
+    busy: tuple[str, ...] = ()
 
     @property
     def sources(self) -> list[Path]:
@@ -210,6 +214,7 @@ def generate_system(
     components += marks.components
     components += slices.components
     _tie_unused_readies(builder)
+    components += watch_blocks(builder, design, interfaces, directory)
     netlist = builder.finish()
     top_file = directory / f"{top_name(design)}.vhd"
     top_file.write_text(netlist.render())
@@ -232,6 +237,7 @@ def generate_system(
         accelerators=hardware_types,
         limits=limits,
         buffers=buffers,
+        busy=watched_blocks(design),
     )
 
 
@@ -253,6 +259,7 @@ def _top_entity(design: Design) -> EntityDecl:
             PortDecl(status_port(converter.id, reason), Mode.OUT, COUNTER_BITS)
             for reason in DROP_REASONS
         ]
+    ports += busy_port(design)
     return EntityDecl(top_name(design), tuple(ports))
 
 

@@ -356,6 +356,12 @@ class _Run:
 
         factory = getattr(top, "myhdl", None)
         if factory is None:
+            if without := getattr(top, "without_myhdl", ()):
+                raise RfcError(
+                    f"the logic holds entities that are not MyHDL ({', '.join(without)}: VHDL "
+                    "accelerators or vendor cores), so it cannot run in MyHDL's simulator",
+                    hint="use --backend ghdl, or switch those accelerators to MyHDL or ROS-SW",
+                )
             raise RfcError(
                 "the logic of this system is not a MyHDL design, so it cannot run in MyHDL",
                 hint="use --backend ghdl",

@@ -1,7 +1,9 @@
 """The top level's ``busy`` port: one bit per block that may still owe the processor a message.
 
-Every hardware accelerator block and every publisher gets a watch (`rfc.lib.busy`) on its
-message handshakes; bit i of ``busy`` is the watch of the i-th name of `watched_blocks`.
+Every hardware accelerator block gets a watch (`rfc.lib.busy`) on its message handshakes, and
+every publisher one that is high while a message is offered to it or its frame is on its DMA
+side (a frame may wait there for the scheduler's grant without a beat moving); bit i of
+``busy`` is the watch of the i-th name of `watched_blocks`.
 Simulated replays read it so that they never call the logic idle while an accelerator
 computes without DMA traffic (docs/runtime.md). Nothing in the block design reads it, so
 synthesis removes the watches.
@@ -105,9 +107,14 @@ def _accelerator(
 def _publisher(
     builder: TopBuilder, interface: Interface, label: str
 ) -> tuple[list[_Input], list[_Output]]:
-    valid, ready = (_net(builder, interface[f"{MESSAGE}_{s}"]) for s in ("valid", "ready"))
-    frame = (_net(builder, Terminal(label, f"m_axis_{s}")) for s in ("tvalid", "tready", "tlast"))
-    return [(valid, ready)], [tuple(frame)]  # type: ignore[list-item]
+    """Busy while a message is offered to it or a frame of it waits or moves on its DMA side.
+
+    Neither counts as taken (ready 0) and the one output always ends: the watch owes nothing.
+    """
+    never, always = constant(0, 1, wire=True), constant(1, 1, wire=True)
+    offered = _net(builder, interface[f"{MESSAGE}_valid"])
+    framing = _net(builder, Terminal(label, "m_axis_tvalid"))
+    return [(offered, never), (framing, never)], [(always, always, always)]
 
 
 def _net(builder: TopBuilder, terminal: Terminal) -> Net:

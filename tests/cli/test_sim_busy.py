@@ -1,8 +1,9 @@
 """`rfc sim` waits for an accelerator that computes without DMA traffic, and not forever.
 
 A MyHDL accelerator that answers each Point 3,000 cycles after taking it — three times the
-default drain window — gives every output with the default window on each simulator; one that
-takes its input and never answers ends the replay with a warning naming it, not a hang.
+default drain window — gives every output with the default window on each simulator (GHDL,
+Verilator, MyHDL's); one that takes its input and never answers ends the replay with a warning
+naming it, not a hang.
 """
 
 from __future__ import annotations
@@ -94,23 +95,30 @@ def system(tmp_path, top):
     return tmp_path / "slow.yaml", [data for _, _, data in inputs]
 
 
-@pytest.mark.parametrize("simulator", ["ghdl", "verilator"])
+SIMULATORS = {
+    "ghdl": ("--simulator", "ghdl"),
+    "verilator": ("--simulator", "verilator"),
+    "myhdl": ("--backend", "myhdl"),
+}
+
+
+@pytest.mark.parametrize("simulator", list(SIMULATORS))
 def test_outputs_computed_longer_than_the_drain_window_are_not_lost(tmp_path, simulator):
     spec, inputs = system(tmp_path, "slow_copy")
     out = tmp_path / "out.mcap"
     result = run_rfc("sim", spec, "--bag", tmp_path / "in.mcap", "--out", out,
-                     "--simulator", simulator, "--json", cwd=tmp_path)  # fmt: skip
+                     *SIMULATORS[simulator], "--json", cwd=tmp_path)  # fmt: skip
     assert result.returncode == 0, result.stderr
     assert json.loads(result.stdout)["warnings"] == []
     assert [m.data for m in read_bag(out, message_types("ros2"))] == inputs
 
 
-@pytest.mark.parametrize("simulator", ["ghdl", "verilator"])
+@pytest.mark.parametrize("simulator", list(SIMULATORS))
 def test_an_accelerator_that_never_answers_ends_the_replay_with_a_warning(tmp_path, simulator):
     spec, _ = system(tmp_path, "never")
     out = tmp_path / "out.mcap"
     result = run_rfc("sim", spec, "--bag", tmp_path / "in.mcap", "--out", out,
-                     "--simulator", simulator, "--stall-cycles", "5000", "--json",
+                     *SIMULATORS[simulator], "--stall-cycles", "5000", "--json",
                      cwd=tmp_path)  # fmt: skip
     assert result.returncode == 0, result.stderr
     document = json.loads(result.stdout)

@@ -86,10 +86,9 @@ class _Wiring:
                 continue
             if net.text == net.signal:
                 widths[net.signal] = (net.bits, net.wire)
-            else:
-                bits = max(widths.get(net.signal, (0, False))[0], net.span[0] + 1)
-                widths.setdefault(net.signal, (bits, False))
-                widths[net.signal] = (max(widths[net.signal][0], bits), widths[net.signal][1])
+            else:  # a bit or slice: the vector is at least that wide
+                bits, wire = widths.get(net.signal, (0, False))
+                widths[net.signal] = (max(bits, net.span[0] + 1), wire)
         for name, (bits, wire) in widths.items():
             self.signals[name] = _signal(bits, wire, name)
         self.parts: dict[str, Any] = {}  # a driven bit or slice → its own signal

@@ -13,7 +13,6 @@ import json
 from pathlib import Path
 
 import numpy as np
-import pytest
 
 from rfc.messages.rosbags_adapter import message_types, read_bag, write_bag
 from tests.examples.multi_type.test_system import TOPICS, image, scan, twist
@@ -60,7 +59,6 @@ def test_the_quaternion_example_gives_ghdls_bag_in_myhdl(tmp_path):
     assert outputs(tmp_path / "myhdl.mcap") == outputs(tmp_path / "ghdl.mcap")
 
 
-@pytest.mark.slow  # about a minute of CPU: MyHDL elaborates and simulates the buffers
 def test_the_multi_type_example_gives_ghdls_bag_in_myhdl(tmp_path):
     rng = np.random.default_rng(5)
     types = message_types("ros2")

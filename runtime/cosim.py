@@ -10,12 +10,13 @@ stamp of the newest input offered so far.
 
 Idle time is skipped (`rfc.runtime.arrivals`): when nothing waits, nothing moves and the logic
 has been quiet for the job's drain window (and is not still expected to answer a transfer,
-`rfc.runtime.stall.AnswerWait`), the next message arrives at once. After the last
+`rfc.runtime.stall.AnswerWait`, nor busy by its ``busy`` bits, `rfc.runtime.busy`), the next
+message arrives at once. After the last
 message the run ends once the system is idle the same way. A logic that stops completing
 transfers while work is pending ends the run with the stall watchdog's report
 (`rfc.runtime.stall`). Results go back through files: the published messages
-(`rfc.runtime.records`), the account as JSON, the progress (messages offered so far), or the
-stall report instead.
+(`rfc.runtime.records`), the account as JSON, the warnings of the busy bits, the progress
+(messages offered so far), or the stall report instead.
 """
 
 from __future__ import annotations
@@ -37,6 +38,7 @@ from rfc.lib.converters.malformed import DROP_REASONS, status_port
 from rfc.lower.runtime_plan import DesignPlan
 from rfc.messages.rosbags_adapter import message_types, read_bag
 from rfc.runtime.arrivals import IDLE_FRACTION, ArrivalClock
+from rfc.runtime.busy import BusyWatch
 from rfc.runtime.core import Published, QueueConfig, QueuePolicy, Runtime
 from rfc.runtime.protocol import Chunk
 from rfc.runtime.records import write_records
@@ -60,6 +62,10 @@ class _Replay:
             job["stall_cycles"], len(dut.s_axis_mm2s_tkeep), largest_output(runtime)
         )
         self.answer = AnswerWait(len(dut.s_axis_mm2s_tkeep))
+        self.dut = dut
+        names = tuple(job["busy"]) if hasattr(dut, "busy") else ()
+        self.busy_bits = BusyWatch(names, job["stall_cycles"])
+        self.working = False
         self.source = AxiStreamSource(
             AxiStreamBus.from_prefix(dut, "s_axis_mm2s"),
             dut.aclk,
@@ -94,6 +100,7 @@ class _Replay:
             await self.source.send(chunk.to_bytes())
             await self.source.wait()
             self.watch.completed(self.cycles(), chunk.size)
+            self.busy_bits.completed(self.cycles())
             self.answer.sent(self.cycles(), chunk.size)
 
     async def receive(self) -> None:
@@ -102,6 +109,7 @@ class _Replay:
             frame = await self.sink.recv()
             self.received_transfers += 1
             self.watch.completed(self.cycles(), len(frame.tdata))
+            self.busy_bits.completed(self.cycles())
             if is_status(bytes(frame.tdata)):
                 names = self.runtime.plan.subscriber_names
                 self.runtime.logic_drops(decode_status(bytes(frame.tdata), names))
@@ -133,11 +141,19 @@ class _Replay:
             step = min(drain, due - self.cycles())
             await Timer(step * self.period_ns, unit="ns")
             busy = self.busy()
-            idle = not busy and self.received_transfers == before
-            if idle and not self.answer.awaiting(self.cycles()):
+            settled = not self.working  # a whole quiet window after the busy bits fell
+            self.working = self.logic_working()
+            quiet = settled and not self.working and self.received_transfers == before
+            if not busy and quiet and not self.answer.awaiting(self.cycles()):
                 return
             sending = self.sending.size if self.sending is not None else 0
             self.watch.check(self.cycles(), busy, self.pending, sending, self.receiving())
+
+    def logic_working(self) -> bool:
+        """Whether the logic's busy bits say it still works (a top without them: never)."""
+        if not self.busy_bits.names:
+            return False
+        return self.busy_bits.busy(self.cycles(), int(self.dut.busy.value))
 
     def receiving(self) -> bool:
         return bool(self.sink.active) or not self.sink.empty()
@@ -215,5 +231,6 @@ async def replay_through_logic(dut: object) -> None:
     except StallError as exc:
         Path(job["stalled"]).write_text(json.dumps({"message": exc.message, "hint": exc.hint}))
         return
+    Path(job["warnings"]).write_text(json.dumps(replay.busy_bits.warnings))
     write_records(Path(job["results"]), replay.published)
     Path(job["account"]).write_text(json.dumps(replay.runtime.account.to_json()))

@@ -33,7 +33,10 @@ DEFAULT_DRAIN_CYCLES = 1000
 
 
 class SimulationTop(Protocol):
-    """The logic to simulate: its entity, its VHDL sources in compile order, its bus width."""
+    """The logic to simulate: its entity, its VHDL sources in compile order, its bus width.
+
+    A top may also name the blocks its ``busy`` port watches (``busy``, `rfc.runtime.busy`).
+    """
 
     top: str
     sources: list[Path]
@@ -73,6 +76,7 @@ class SimulationRun:
 
     published: list[Published]
     account: Account
+    warnings: tuple[str, ...] = ()
 
 
 def simulate_with_ghdl(
@@ -128,6 +132,8 @@ def simulate_with_ghdl(
         "account": str(workdir / "account.json"),
         "progress": str(workdir / "progress"),
         "stalled": str(workdir / "stalled.json"),
+        "busy": list(getattr(top, "busy", ())),
+        "warnings": str(workdir / "warnings.json"),
     }
     job_file = workdir / "job.json"
     job_file.write_text(json.dumps(job, indent=1))
@@ -163,6 +169,7 @@ def simulate_with_ghdl(
     return SimulationRun(
         list(read_records(Path(job["results"]))),
         Account.from_json(json.loads(Path(job["account"]).read_text())),
+        tuple(json.loads(Path(job["warnings"]).read_text())),
     )
 
 

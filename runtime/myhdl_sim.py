@@ -5,8 +5,9 @@ takes the contract's port signals by name), it runs in MyHDL's own simulator, in
 no GHDL, no files. One clocked process plays the processor: it samples both AXI-Stream
 handshakes at each rising edge, offers messages as they arrive (`rfc.runtime.arrivals`), drives
 the PS→PL stream with the software scheduler's next chunk (with random idle cycles between
-beats) and takes PL→PS beats with random backpressure. Same seed, same runtime, same account as
-the GHDL backend; the cycle-level timing of the two testbenches differs slightly.
+beats) and takes PL→PS beats with random backpressure; quiet cycles count only while the logic's
+``busy`` bits (where its top has them, `rfc.runtime.busy`) are low. Same seed, same runtime,
+same account as the GHDL backend; the cycle-level timing of the two testbenches differs slightly.
 """
 
 from __future__ import annotations
@@ -19,6 +20,7 @@ from myhdl import ResetSignal, Signal, StopSimulation, block, delay, instance, i
 
 from rfc.messages.rosbags_adapter import BagMessage
 from rfc.runtime.arrivals import IDLE_FRACTION, ArrivalClock
+from rfc.runtime.busy import BusyWatch
 from rfc.runtime.core import Published, Runtime
 from rfc.runtime.protocol import Chunk
 from rfc.runtime.stall import DEFAULT_STALL_CYCLES, StallWatch, largest_output, pending_work
@@ -47,8 +49,23 @@ def simulate_with_myhdl(
     stall_cycles: int = DEFAULT_STALL_CYCLES,
     seed: int = 1,
     progress: Callable[[int], None] | None = None,
+    busy: tuple[str, ...] = (),
+    warnings: list[str] | None = None,
 ) -> list[Published]:
     """Replay `messages` (spec topics, time order) through the MyHDL logic; finish the account.
+
+    Args:
+        factory: Elaborates the logic from the contract's port signals, by name.
+        bus_width: Bits of the DMA streams.
+        runtime: The processor side.
+        messages: Input messages in time order, on the spec's topics.
+        clock_mhz: The logic's clock.
+        drain_cycles: Quiet cycles after which the system is idle.
+        stall_cycles: The stall watchdog's base window, and the cap of the busy bits.
+        seed: Seed of the random idle and backpressure.
+        progress: Called with the number of messages offered so far.
+        busy: The blocks the logic's ``busy`` port watches (none: it has no such port).
+        warnings: Receives what the replay gave up waiting for (`rfc.runtime.busy`).
 
     Raises:
         StallError: The logic stalled (`rfc.runtime.stall`).
@@ -68,6 +85,8 @@ def simulate_with_myhdl(
         "m_axis_s2mm_tready": Signal(bool(0)),
         "m_axis_s2mm_tlast": Signal(bool(0)),
     }
+    if busy:
+        ports["busy"] = Signal(intbv(0)[len(busy) :])
     published: list[Published] = []
     watch = StallWatch(stall_cycles, lanes, largest_output(runtime))
     processor = _Processor(
@@ -75,6 +94,7 @@ def simulate_with_myhdl(
     )
     processor.progress = progress
     processor.published = published
+    processor.busy = BusyWatch(busy, stall_cycles)
 
     @block
     def bench() -> Any:
@@ -94,6 +114,8 @@ def simulate_with_myhdl(
         return logic, clock, drive
 
     bench().run_sim(quiet=1)
+    if warnings is not None:
+        warnings += processor.busy.warnings
     runtime.finish()
     return published
 
@@ -124,6 +146,7 @@ class _Processor:
         self.beats: list[tuple[int, int, bool]] = []
         self.sending: Chunk | None = None
         self.watch = watch
+        self.busy = BusyWatch((), 0)
         self.received = bytearray()
         self.stamp = 0
         self.cycle = 0
@@ -147,7 +170,8 @@ class _Processor:
                 or self.runtime.in_flight()
                 or p["m_axis_s2mm_tvalid"]
             )
-            self.quiet = 0 if busy or moved else self.quiet + 1
+            working = bool(self.busy.names) and self.busy.busy(self.cycle, int(p["busy"]))
+            self.quiet = 0 if busy or moved or working else self.quiet + 1
             sending = self.sending.size if self.sending is not None else 0
             self.watch.check(self.cycle, busy, self._pending, sending, self._receiving())
             if upcoming is None and self.quiet >= self.drain:
@@ -178,6 +202,7 @@ class _Processor:
             moved = True
             if not self.beats and self.sending is not None:
                 self.watch.completed(self.cycle, self.sending.size)
+                self.busy.completed(self.cycle)
                 self.sending = None
         if p["m_axis_s2mm_tvalid"] and p["m_axis_s2mm_tready"]:
             keep = int(p["m_axis_s2mm_tkeep"])
@@ -187,6 +212,7 @@ class _Processor:
             if p["m_axis_s2mm_tlast"]:
                 transfer, self.received = bytes(self.received), bytearray()
                 self.watch.completed(self.cycle, len(transfer))
+                self.busy.completed(self.cycle)
                 self.published += self.runtime.receive(transfer, self.stamp, self.cycle)
         return moved
 

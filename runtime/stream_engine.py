@@ -10,7 +10,8 @@ transfers are handed over, with the cycle they completed at, when it stops. The 
 side — queues, software scheduler, reassembly, software accelerators, the account — stays in
 `Runtime`, called once per transfer, with the same rules as the cocotb harness: arrivals at
 their recorded times with idle skipped (`rfc.runtime.arrivals`), the stall watchdog and the
-wait for answers (`rfc.runtime.stall`), outputs stamped with the newest input offered so far.
+wait for answers (`rfc.runtime.stall`), the logic's ``busy`` bits (`rfc.runtime.busy`, read with
+the status registers), outputs stamped with the newest input offered so far.
 """
 
 from __future__ import annotations
@@ -27,6 +28,7 @@ from typing import Protocol
 from rfc.lib.converters.malformed import DROP_REASONS, status_port
 from rfc.messages.rosbags_adapter import BagMessage
 from rfc.runtime.arrivals import IDLE_FRACTION, ArrivalClock
+from rfc.runtime.busy import BusyWatch
 from rfc.runtime.core import Published, Runtime
 from rfc.runtime.plan import ToTopic
 from rfc.runtime.protocol import Chunk
@@ -37,6 +39,8 @@ from rfc.toolchain.verilator import build_stream_engine
 TESTBENCH = Path(__file__).resolve().parent / "testbench" / "axis_engine.cpp"
 #: Cycles the engine spends in and out of reset before the drivers start (as the cocotb harness).
 RESET_CYCLES = 6
+#: The top level's port of busy bits (`rfc.lower.system.busy`).
+BUSY = "busy"
 #: Length of the repeated idle/backpressure pattern.
 PATTERN_LENGTH = 1021
 
@@ -125,13 +129,21 @@ class StreamEngine:
             frames.append((at, self._read(size)))
         return Step(ran, sent_at if flags & SENT else None, tuple(frames), bool(flags & _RECEIVING))
 
+    def registers(self) -> list[int]:
+        """The status registers' values now, in the order the engine was built with."""
+        self._write(b"P")
+        return self._registers()
+
     def finish(self) -> list[int]:
         """End the run; the status registers' values in the order the engine was built with."""
         self._write(b"Q")
-        (count,) = struct.unpack("<I", self._read(4))
-        values = list(struct.unpack(f"<{count}Q", self._read(8 * count)))
+        values = self._registers()
         self._process.wait()
         return values
+
+    def _registers(self) -> list[int]:
+        (count,) = struct.unpack("<I", self._read(4))
+        return list(struct.unpack(f"<{count}Q", self._read(8 * count)))
 
     def close(self) -> None:
         """Stop the child process if it still runs."""
@@ -172,6 +184,7 @@ class EngineReplay:
         lanes: Bytes per beat of the DMA streams.
         drain_cycles: Quiet cycles after which the system is idle.
         stall_cycles: The stall watchdog's base window.
+        busy: The logic's ``busy`` bits, or None when its top level has none.
     """
 
     def __init__(
@@ -182,6 +195,7 @@ class EngineReplay:
         lanes: int,
         drain_cycles: int,
         stall_cycles: int,
+        busy: BusyWatch | None = None,
     ) -> None:
         self.engine = engine
         self.runtime = runtime
@@ -194,6 +208,8 @@ class EngineReplay:
         self.receiving = False
         self.watch = StallWatch(stall_cycles, lanes, largest_output(runtime))
         self.answer = AnswerWait(lanes)
+        self.busy = busy
+        self.working = False
         # whether a PL→PS transfer may cause a PS→PL one (through software, or directly)
         self.feedback = any(
             not isinstance(route, ToTopic)
@@ -230,7 +246,11 @@ class EngineReplay:
         while self.cycle < due:
             received = self._run(min(self.drain_cycles, due - self.cycle))
             busy = self._busy()
-            if not busy and not received and not self.answer.awaiting(self.cycle):
+            # a whole quiet window after the logic's busy bits fell
+            settled = not self.working
+            self.working = self._working()
+            quiet = settled and not self.working and not received
+            if not busy and quiet and not self.answer.awaiting(self.cycle):
                 return
             sending = self.sending.size if self.sending is not None else 0
             self.watch.check(self.cycle, busy, self._pending, sending, self.receiving)
@@ -251,11 +271,13 @@ class EngineReplay:
                 if data is None:
                     assert self.sending is not None
                     self.watch.completed(self.cycle + at, self.sending.size)
+                    self._moved(self.cycle + at)
                     self.answer.sent(self.cycle + at, self.sending.size)
                     self.sending = None
                 else:
                     received = True
                     self.watch.completed(self.cycle + at, len(data))
+                    self._moved(self.cycle + at)
                     self.answer.answered()
                     now = self.cycle + at
                     self.published += self.runtime.receive(data, self.stamp, now)
@@ -285,11 +307,23 @@ class EngineReplay:
     def _pending(self) -> str:
         return pending_work(self.runtime, self.sending, self.receiving)
 
+    def _moved(self, cycle: int) -> None:
+        if self.busy is not None:
+            self.busy.completed(cycle)
+
+    def _working(self) -> bool:
+        """Whether the logic's busy bits say it still works (the last status register)."""
+        if self.busy is None:
+            return False
+        return self.busy.busy(self.cycle, self.engine.registers()[-1])
+
 
 def build_engine(
     top: VerilogTop, subscribers: Iterable[int]
 ) -> tuple[Path, dict[str, tuple[int, str]]]:
     """The stream engine of `top` (compiled once per content) and the drop counters it reads.
+
+    The engine reads the top's ``busy`` port after the drop counters, when it has one.
 
     Raises:
         VerilatorError: The engine cannot be built.
@@ -298,8 +332,14 @@ def build_engine(
     module = re.compile(rf"\bmodule\s+{re.escape(top.top)}\b")
     top_text = next((t for p in verilog if module.search(t := p.read_text())), "")
     registers = status_registers(subscribers, top_text)
-    binary = build_stream_engine(TESTBENCH, verilog, top.top, top.bus_width // 8, list(registers))
+    ports = [*registers, *((BUSY,) if _busy_names(top) else ())]
+    binary = build_stream_engine(TESTBENCH, verilog, top.top, top.bus_width // 8, ports)
     return binary, registers
+
+
+def _busy_names(top: VerilogTop) -> tuple[str, ...]:
+    """The blocks the top's ``busy`` bits watch (none for a top without the port)."""
+    return tuple(getattr(top, "busy", ()))
 
 
 def simulate_with_engine(
@@ -311,6 +351,7 @@ def simulate_with_engine(
     stall_cycles: int,
     seed: int,
     progress: Callable[[int], None] | None = None,
+    warnings: list[str] | None = None,
 ) -> list[Published]:
     """Replay `messages` through the Verilog of `top` in the stream engine.
 
@@ -322,6 +363,7 @@ def simulate_with_engine(
         stall_cycles: The stall watchdog's base window (`rfc.runtime.stall`).
         seed: Seed of the idle/backpressure pattern.
         progress: Called now and then with the number of messages offered so far.
+        warnings: Receives what the replay gave up waiting for (`rfc.runtime.busy`).
 
     Returns:
         Everything published, in order.
@@ -336,10 +378,14 @@ def simulate_with_engine(
     engine = StreamEngine(binary, seed)
     try:
         clock_mhz = runtime.plan.design.project.clock_mhz
-        loop = EngineReplay(engine, runtime, clock_mhz, lanes, drain_cycles, stall_cycles)
+        names = _busy_names(top)
+        busy = BusyWatch(names, stall_cycles) if names else None
+        loop = EngineReplay(engine, runtime, clock_mhz, lanes, drain_cycles, stall_cycles, busy)
         published = loop.replay(messages, progress)
-        values = engine.finish()
+        values = engine.finish()[: len(registers)]
     finally:
         engine.close()
+    if busy is not None and warnings is not None:
+        warnings += busy.warnings
     runtime.logic_drops(dict(zip(registers.values(), values, strict=True)))
     return published

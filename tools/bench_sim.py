@@ -11,6 +11,9 @@ LARGE messages) go
     of transfers; GHDL runs ``runtime/testbench/axis_plain_tb.vhd``, which reads them with
     textio (analysis and elaboration are not timed).
 
+With ``myhdl`` as the simulator, (a) runs ``rfc sim --backend myhdl`` (the whole logic in MyHDL's
+simulator, in process) and there is no plain testbench.
+
 On Verilator, (c) the cocotb harness rfc sim used before the C++ testbench (cocotbext-axi
 driving the streams beat by beat, `simulate_with_ghdl(..., simulator="verilator")` in process,
 on SMALL and LARGE_GHDL messages) gives the speed-up over it.
@@ -21,8 +24,9 @@ replay), so both simulate the same work. The marginal cost of a message is
 (t_large - t_small) / (LARGE - SMALL); the ratio is rfc sim's over the plain testbench's.
 The plain testbench's outputs are checked equal to rfc sim's. Prints a Markdown table.
 
-Usage: python tools/bench_sim.py [--systems quaternion odometry] [--simulators ghdl verilator]
-    [--small 20] [--large-ghdl 220] [--large-verilator 2020] [--bag nav2_turtlebot.mcap]
+Usage: python tools/bench_sim.py [--systems quaternion odometry]
+    [--simulators ghdl verilator myhdl] [--small 20] [--large-ghdl 220] [--large-verilator 2020]
+    [--large-myhdl 120] [--bag nav2_turtlebot.mcap]
 """
 
 from __future__ import annotations
@@ -201,7 +205,8 @@ def ghdl_stimulus(stimulus: Stimulus) -> str:
 def rfc_sim(spec: Path, bag: Path, out: Path, simulator: str) -> float:
     """Wall time of `rfc sim` as a user runs it."""
     start = time.perf_counter()
-    options = ["--json", "--drain-cycles", str(DRAIN), "--simulator", simulator]
+    chosen = ["--backend", "myhdl"] if simulator == "myhdl" else ["--simulator", simulator]
+    options = ["--json", "--drain-cycles", str(DRAIN), *chosen]
     subprocess.run(
         [sys.executable, "-m", "rfc", "sim", spec, "--bag", bag, "--out", out, *options],
         check=True,
@@ -240,7 +245,10 @@ class Plain:
         work = self.folder / "ghdl"
         if self._ghdl_work is None:
             tb = self.folder / "rfc_plain_tb.vhd"
-            tb.write_text(PLAIN_TB.read_text().replace("RFC_TOP", self.top.top))
+            text = PLAIN_TB.read_text().replace("RFC_TOP", self.top.top)
+            if self.top.busy:
+                text = text.replace("-- RFC_BUSY", "busy => busy,")
+            tb.write_text(text)
             analyze([*self.top.sources, tb], work, "rfc_plain_tb")
             self._ghdl_work = work
         source = self.folder / "stimulus.txt"
@@ -248,6 +256,7 @@ class Plain:
         source.write_text(ghdl_stimulus(stimulus))
         options = [f"--std={STANDARD}", "-fsynopsys", f"--workdir={work}"]
         generics = [f"-gstimulus={source}", f"-gresults={results}", f"-glanes={self.lanes}"]
+        generics.append(f"-gbusy_bits={max(len(self.top.busy), 1)}")
         start = time.perf_counter()
         subprocess.run(
             ["ghdl", "-r", *options, "rfc_plain_tb", *generics, "--ieee-asserts=disable"],
@@ -287,6 +296,10 @@ def measure(
     small, large = sorted(bags)
     rfc_sim(spec, bags[small], folder / "warm.mcap", simulator)  # caches, page cache
     sim = {n: rfc_sim(spec, bag, folder / f"out{n}.mcap", simulator) for n, bag in bags.items()}
+    per_sim = (sim[large] - sim[small]) / (large - small)
+    if simulator == "myhdl":
+        cost = f"{1000 * per_sim:.3f} ms"
+        return name, simulator, f"{small} and {large}", cost, "—", "—", f"{1 / per_sim:,.1f}", "—"
     run = plain.verilator if simulator == "verilator" else plain.ghdl
     bare, outputs = {}, {}
     for count, bag in bags.items():
@@ -295,7 +308,6 @@ def measure(
         published = [m.data for m in read_bag(folder / f"out{count}.mcap", types)]
         if [frame[HEADER_SIZE:] for frame in outputs[count]] != published:
             raise SystemExit(f"{name}: the plain testbench's outputs are not rfc sim's")
-    per_sim = (sim[large] - sim[small]) / (large - small)
     per_plain = (bare[large] - bare[small]) / (large - small)
     speedup = "—"
     if simulator == "verilator":
@@ -326,6 +338,7 @@ def main() -> None:
     parser.add_argument("--small", type=int, default=20)
     parser.add_argument("--large-ghdl", type=int, default=220)
     parser.add_argument("--large-verilator", type=int, default=2020)
+    parser.add_argument("--large-myhdl", type=int, default=120)
     parser.add_argument("--bag", type=Path, default=SHARED / "bags" / "nav2_turtlebot.mcap")
     args = parser.parse_args()
     rows = []
@@ -340,7 +353,7 @@ def main() -> None:
         for system in args.systems:
             plain = Plain(specs[system], folder / system)
             bags = {}
-            for count in {args.small, args.large_ghdl, args.large_verilator}:
+            for count in {args.small, args.large_ghdl, args.large_verilator, args.large_myhdl}:
                 bags[count] = folder / f"{system}{count}.mcap"
                 if system == "quaternion":
                     orientations_bag(bags[count], count)
@@ -348,7 +361,9 @@ def main() -> None:
                     odometry_bag(bags[count], count, args.bag)
             before = {n: bags[n] for n in (args.small, args.large_ghdl)}
             for simulator in args.simulators:
-                large = args.large_ghdl if simulator == "ghdl" else args.large_verilator
+                large = {"ghdl": args.large_ghdl, "myhdl": args.large_myhdl}.get(
+                    simulator, args.large_verilator
+                )
                 chosen = {n: bags[n] for n in (args.small, large)}
                 row = measure(system, specs[system], chosen, simulator, folder, plain, before)
                 rows.append(row)

@@ -14,7 +14,7 @@ import sys
 import tempfile
 from collections.abc import Callable, Generator
 from contextlib import closing
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from enum import StrEnum
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated
@@ -226,8 +226,11 @@ def sim(
         {output.topic: output.message for output in plan.outputs},
         ((p.topic, p.stamp, p.data) for p in published),
     )
+    for warning in run.warnings:
+        print(f"warning: {warning}", file=sys.stderr)
     if as_json:
-        print(json.dumps({"out": str(out), **account.to_json()}, indent=1))
+        document = {"out": str(out), **account.to_json(), "warnings": run.warnings}
+        print(json.dumps(document, indent=1))
     else:
         _print_account(Console(highlight=False), account, plan, out)
 
@@ -246,6 +249,8 @@ class _Run:
     seed: int
     top_provider: str | None
     simulator: Simulator | None = None
+    warnings: list[str] = field(default_factory=list)
+    """What the replay gave up waiting for (`rfc.runtime.busy`), filled by `execute`."""
 
     def total(self) -> int:
         from rfc.messages.rosbags_adapter import bag_topics
@@ -307,6 +312,7 @@ class _Run:
             progress=progress,
             simulator=simulator,
         )
+        self.warnings.extend(run.warnings)
         return run.published, run.account
 
     def _engine(self, top: SimulationTop, progress: Callable[[int], None]) -> list[Published]:
@@ -325,6 +331,7 @@ class _Run:
                     stall_cycles=self.stall_cycles,
                     seed=self.seed,
                     progress=progress,
+                    warnings=self.warnings,
                 )
         except (VerilatorError, EngineError) as exc:
             raise CosimError(str(exc)) from None
@@ -349,6 +356,12 @@ class _Run:
 
         factory = getattr(top, "myhdl", None)
         if factory is None:
+            if without := getattr(top, "without_myhdl", ()):
+                raise RfcError(
+                    f"the logic holds entities that are not MyHDL ({', '.join(without)}: VHDL "
+                    "accelerators or vendor cores), so it cannot run in MyHDL's simulator",
+                    hint="use --backend ghdl, or switch those accelerators to MyHDL or ROS-SW",
+                )
             raise RfcError(
                 "the logic of this system is not a MyHDL design, so it cannot run in MyHDL",
                 hint="use --backend ghdl",
@@ -364,6 +377,8 @@ class _Run:
                 stall_cycles=self.stall_cycles,
                 seed=self.seed,
                 progress=progress,
+                busy=tuple(getattr(top, "busy", ())),
+                warnings=self.warnings,
             )
 
 

@@ -13,7 +13,9 @@
 //                        is under way), u64 the cycle it completed at (counted from 1 in this
 //                        run), u32 k, then k completed PL->PS transfers as u64 cycle, u32 n,
 //                        n bytes (those whose tkeep is set)
-//   'Q'                  answer u32 k and the k status registers as u64, then exit
+//   'P'                  answer u32 k and the k status registers as u64 (the top's busy
+//                        port is the last when it has one)
+//   'Q'                  answer as 'P', then exit
 // Batch mode (--batch), the plain testbench without Python: 'S' as above, 'W' u64 n runs n
 // cycles without stopping; every completed PL->PS transfer is written as u32 n, n bytes; at the
 // end of the input the status registers follow as in 'Q'.
@@ -205,6 +207,8 @@ void interactive(Streams& streams) {
         write_transfer(bytes);
       }
       std::fflush(stdout);
+    } else if (command == 'P') {
+      streams.report_status();
     } else if (command == 'Q') {
       streams.report_status();
       return;

@@ -6,6 +6,9 @@
 -- backwards), the cycle at which the run ends, then one PS->PL transfer per line: the cycle
 -- (after reset) from which it may start, its length in bytes and its bytes in hex. Every PL->PS
 -- transfer is written to the results file as one line of hex (the bytes whose tkeep is set).
+-- A top level with a `busy` port (one bit per watched block; the line `-- RFC_BUSY` is replaced
+-- by its association and `busy_bits` set) runs on past the end while any bit is high, for at
+-- most `busy_cap` cycles, as `rfc sim` waits for it.
 library ieee;
 use ieee.std_logic_1164.all;
 use ieee.numeric_std.all;
@@ -15,7 +18,9 @@ entity rfc_plain_tb is
   generic (
     stimulus : string;
     results : string;
-    lanes : positive := 8
+    lanes : positive := 8;
+    busy_bits : positive := 1;
+    busy_cap : natural := 100000
   );
 end entity rfc_plain_tb;
 
@@ -30,6 +35,7 @@ architecture plain of rfc_plain_tb is
   signal m_tkeep : std_logic_vector(lanes - 1 downto 0);
   signal m_tvalid, m_tlast : std_logic;
   signal m_tready : std_logic := '0';
+  signal busy : std_logic_vector(busy_bits - 1 downto 0) := (others => '0');
 
   function nibble(c : character) return natural is
   begin
@@ -43,6 +49,7 @@ architecture plain of rfc_plain_tb is
 begin
   dut : entity work.RFC_TOP
     port map (
+      -- RFC_BUSY
       aclk => aclk,
       aresetn => aresetn,
       s_axis_mm2s_tdata => s_tdata,
@@ -83,7 +90,8 @@ begin
       readline(source, frame);
       read(frame, due);
     end if;
-    for now_cycle in 0 to ending - 1 loop
+    for now_cycle in 0 to ending + busy_cap - 1 loop
+      exit when now_cycle >= ending and busy = (busy'range => '0');
       wait until rising_edge(aclk);
       at := now_cycle mod pattern'length;
       sent := s_tvalid = '1' and s_tready = '1';

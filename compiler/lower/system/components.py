@@ -9,6 +9,7 @@ guard that drop malformed frames from `rfc.lib.converters.malformed` and `.guard
 
 from __future__ import annotations
 
+import dataclasses
 import tempfile
 import warnings
 from collections.abc import Callable, Sequence
@@ -20,7 +21,7 @@ from myhdl import ToVerilogWarning, ToVHDLWarning
 
 from rfc.ir.infrastructure import Converter
 from rfc.lib.converters.buffers import Buffer, buffered_ports, buffered_publisher, buffers_of
-from rfc.lib.converters.build import generate
+from rfc.lib.converters.build import generate, publisher_top, subscriber_top
 from rfc.lib.converters.guard import frame_guard, guard_ports
 from rfc.lib.converters.malformed import drop_gate, gate_ports
 from rfc.lib.converters.plan import plan
@@ -49,6 +50,8 @@ class Component:
             nor for a vendor core).
         verilog_by_ghdl: Whether `verilog` is GHDL's netlist of VHDL (whose Verilog writer
             has known bugs: fine for Yosys's estimate, not for simulation).
+        myhdl: The MyHDL block it was converted from, taking its port signals by name (none
+            for a VHDL accelerator or a vendor core): ``rfc sim --backend myhdl`` runs it.
     """
 
     entity: EntityDecl
@@ -56,14 +59,18 @@ class Component:
     buffers: tuple[Buffer, ...] = ()
     verilog: tuple[Path, ...] = ()
     verilog_by_ghdl: bool = False
+    myhdl: Callable[..., Any] | None = dataclasses.field(default=None, compare=False)
 
 
-def _component(entity: EntityDecl, files: Sequence[Path]) -> Component:
+def _component(
+    entity: EntityDecl, files: Sequence[Path], myhdl: Callable[..., Any] | None = None
+) -> Component:
     """A component from MyHDL's output: VHDL files first, then the Verilog file."""
     return Component(
         entity,
         tuple(f for f in files if f.suffix == ".vhd"),
         verilog=tuple(f for f in files if f.suffix == ".v"),
+        myhdl=myhdl,
     )
 
 
@@ -88,7 +95,7 @@ def convert(
         warnings.simplefilter("ignore", UserWarning)
         top = top_block(name, [p.name for p in ports], body, **parameters)
         files = convert_myhdl(top(**port_signals(ports)), name, directory, header=f"{name}: {what}")
-    return _component(entity_of(name, ports), files)
+    return _component(entity_of(name, ports), files, top)
 
 
 def synthesized_netlist(sources: Sequence[Path], top: str, directory: Path) -> tuple[Path, ...]:
@@ -133,23 +140,25 @@ def converter_component(
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", UserWarning)
         generated = generate(converter_plan, side, directory, name)
-    return _component(entity_of(name, generated.ports), generated.files)
+    top = subscriber_top if side is Side.SUBSCRIBER else publisher_top
+    return _component(entity_of(name, generated.ports), generated.files, top(converter_plan, name))
 
 
 def manager_component(shape: ManagerShape, directory: Path, name: str) -> Component:
     """The manager: PS→PL demultiplexer and PL→PS multiplexer with its scheduler."""
     ports = manager_ports(shape)
+    top = manager_top(shape, name)
     with elaboration(), warnings.catch_warnings():
         warnings.simplefilter("ignore", ToVHDLWarning)
         warnings.simplefilter("ignore", ToVerilogWarning)
         warnings.simplefilter("ignore", UserWarning)
         files = convert_myhdl(
-            manager_top(shape, name)(**port_signals(ports)),
+            top(**port_signals(ports)),
             name,
             directory,
             header=f"{name}: the DMA manager of the system (rfc)",
         )
-    return _component(entity_of(name, ports), files)
+    return _component(entity_of(name, ports), files, top)
 
 
 def fork_component(consumers: int, directory: Path, name: str) -> Component:

@@ -9,9 +9,10 @@ message that feeds several blocks goes through a handshake fork.
 from __future__ import annotations
 
 from collections import defaultdict
-from collections.abc import Mapping
-from dataclasses import dataclass
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 from rfc.ir.infrastructure import Converter, Scheduler
 from rfc.ir.model import BlockKind, Connection, Design
@@ -23,6 +24,7 @@ from rfc.lib.manager.entity import ManagerShape
 from rfc.lib.schedulers.spec import DEFAULT_IDLE, AnySchedulerSpec, SchedulerSpec
 from rfc.lower.netlist import EntityDecl, Mode, Netlist, PortDecl, constant
 from rfc.lower.system.accelerators import AcceleratorHardware, HlsCore, accelerator_hardware
+from rfc.lower.system.busy import busy_port, watch_blocks, watched_blocks
 from rfc.lower.system.components import (
     Component,
     converter_component,
@@ -31,6 +33,7 @@ from rfc.lower.system.components import (
 )
 from rfc.lower.system.guards import SubscriberGuards
 from rfc.lower.system.interfaces import MANAGER, MESSAGE
+from rfc.lower.system.myhdl_top import missing_blocks, myhdl_logic
 from rfc.lower.system.slices import RegisterSlices
 from rfc.lower.system.stream_marks import StreamMarks
 from rfc.lower.system.top import CLOCK, RESET_N, Interface, Terminal, TopBuilder, wire_connection
@@ -62,6 +65,9 @@ class SystemHardware:
         accelerators: The hardware of each accelerator type in the logic, by type name.
         limits: The maxima of strings and sequences the converters were built for.
         buffers: The FIFOs in front of each publisher that takes strings or sequences, by block.
+        busy: The blocks the top level's ``busy`` bits watch, bit 0 first
+            (`rfc.lower.system.busy`).
+        blocks: The MyHDL block of each entity that has one, by entity name.
     """
 
     top: str
@@ -76,11 +82,23 @@ class SystemHardware:
     accelerators: Mapping[str, AcceleratorHardware]
     limits: Limits
     buffers: Mapping[str, tuple[Buffer, ...]]
+    busy: tuple[str, ...] = ()
+    blocks: Mapping[str, Callable[..., Any]] = field(default_factory=dict, compare=False)
 
     @property
     def sources(self) -> list[Path]:
         """The VHDL in compile order (the simulator's view)."""
         return list(self.files)
+
+    @property
+    def without_myhdl(self) -> list[str]:
+        """The entities with no MyHDL block (VHDL accelerators, vendor cores)."""
+        return missing_blocks(self.netlist, self.blocks)
+
+    @property
+    def myhdl(self) -> Callable[..., Any] | None:
+        """The whole logic as a MyHDL block factory (port signals by name), if it has one."""
+        return None if self.without_myhdl else myhdl_logic(self.netlist, self.blocks)
 
 
 def top_name(design: Design) -> str:
@@ -216,6 +234,7 @@ def generate_system(
     components += marks.components
     components += slices.components
     _tie_unused_readies(builder)
+    components += watch_blocks(builder, design, interfaces, directory)
     netlist = builder.finish()
     top_file = directory / f"{top_name(design)}.vhd"
     top_file.write_text(netlist.render())
@@ -238,6 +257,8 @@ def generate_system(
         accelerators=hardware_types,
         limits=limits,
         buffers=buffers,
+        busy=watched_blocks(design),
+        blocks={c.entity.name: c.myhdl for c in components if c.myhdl is not None},
     )
 
 
@@ -259,6 +280,7 @@ def _top_entity(design: Design) -> EntityDecl:
             PortDecl(status_port(converter.id, reason), Mode.OUT, COUNTER_BITS)
             for reason in DROP_REASONS
         ]
+    ports += busy_port(design)
     return EntityDecl(top_name(design), tuple(ports))
 
 

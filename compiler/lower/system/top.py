@@ -80,6 +80,12 @@ class TopBuilder:
         assert net is not None
         return net
 
+    def net(self, terminal: Terminal) -> Net | None:
+        """The net on a cell's port: an output's (declared on first use), else what drives it."""
+        if self.port(terminal).mode is Mode.OUT:
+            return self.output(terminal)
+        return self._connections[terminal.cell].get(terminal.port)
+
     def connect(self, terminal: Terminal, net: Net) -> None:
         """Connect a cell's port to an existing net (a top-level port, or an output's net)."""
         connections = self._connections[terminal.cell]

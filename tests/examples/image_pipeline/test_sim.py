@@ -35,6 +35,7 @@ def test_rfc_sim_gives_numpys_integral_images_with_the_stages_in_ghdl(tmp_path):
                      cwd=tmp_path)  # fmt: skip
     assert result.returncode == 0, result.stderr
     account = json.loads(result.stdout)
+    assert account["warnings"] == []
     assert account["software_calls"] == {}
     assert account["from_logic"] == {"Integral_pub": len(images)}
     types = message_types("ros2")

@@ -1,4 +1,4 @@
-"""Timing without vendor tools: Yosys' `sta` on a netlist mapped to the 7-series, read back.
+"""Timing without vendor tools: Yosys' `sta` on a netlist mapped to the 7-series.
 
 Yosys annotates its 7-series cells (LUTs, CARRY4, MUXF7/8, flip-flops, DSP48E1, block RAM)
 with delays from Project X-Ray's Artix-7 timing database, the fabric of the xc7z020; `sta`
@@ -11,29 +11,22 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
-from pathlib import Path
 
 #: Estimated period over cell delay: routing takes about as much again as the cells (the
 #: "50/50 rule" of Xilinx's timing guides for a design before placement; docs/performance.md).
 ROUTING_FACTOR = 2.0
 
 
-def sta_commands(log: Path) -> str:
-    """The Yosys commands that time a mapped netlist already read, writing `sta`'s report to `log`.
-
-    The cells' library must have been read with `-specify` (carries and wide muxes get their
-    delays that way). Private names become those of the signals the cells drive, so that the
-    path names registers rather than ``$abc$123``.
-    """
-    return f"rename -hide w:_*_ c:_*_; flatten; autoname; tee -q -o {log} sta"
-
-
 _HEADER = re.compile(r"^Latest arrival time in '(?P<module>[^']+)' is (?P<arrival>-?\d+):")
 _STEP = re.compile(r"^\s+(?P<arrival>-?\d+)\s+(?P<name>.*?)\s*\((?P<what>[^()]*)\)\s*$")
 #: Pins a path starts from when it leaves a register (flip-flop, DSP, block RAM, LUT RAM).
 _CLOCK_PINS = frozenset({"C", "CLK", "CLKARDCLK", "CLKBWRCLK", "WCLK"})
-#: The part of a name `autoname` appends after the signal a cell drives (`count_FDRE_Q_3`).
-_CELL_SUFFIX = re.compile(r"_(?:FD[A-Z]*|LUT\d|CARRY4|MUXF\d|DSP48E1|RAM\w*|SRL\w*|BUFG)_.*$")
+#: The part of a register's name after the signal it drives: the bit and the cell type that
+#: ``rename -wire`` appends (``count[3]\\FDRE``), or what ``autoname`` appends
+#: (``count_FDRE_Q_3``).
+_CELL_SUFFIX = re.compile(
+    r"(?:\[\d+\])?\\\w+$|_(?:FD[A-Z]*|LUT\d|CARRY4|MUXF\d|DSP48E1|RAM\w*|SRL\w*|BUFG)_.*$"
+)
 
 
 @dataclass(frozen=True)

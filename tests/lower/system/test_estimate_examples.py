@@ -1,7 +1,7 @@
 """Every example's logic meets its clock under the routing allowance, and no path crosses blocks.
 
-One `rfc build --estimate` per example, shared by the tests below; the module figures go to the
-session's cache, so the variants of an example map their common blocks once.
+One `rfc build --estimate` per example; the module figures go to the session's cache, so the
+variants of an example map their common blocks once.
 """
 
 from __future__ import annotations
@@ -37,21 +37,12 @@ WITH_HLS_CORES = (
 SLICE_NS = 0.5
 
 
-@pytest.fixture(scope="session")
-def estimates(tmp_path_factory, synthesis_cache):
-    """Each example's report.md, built once with `--estimate` on first use."""
-    reports: dict[str, str] = {}
-
-    def report(spec: str) -> str:
-        if spec not in reports:
-            out = tmp_path_factory.mktemp("example") / "build"
-            env = {"RFC_CACHE_DIR": str(synthesis_cache)}
-            result = run_rfc("build", EXAMPLES / spec, "-o", out, "--estimate", cwd=ROOT, env=env)
-            assert result.returncode == 0, result.stderr
-            reports[spec] = (out / "report.md").read_text()
-        return reports[spec]
-
-    return report
+def estimated(spec: str, out: Path, cache: Path) -> str:
+    """The report.md of `rfc build --estimate` of an example."""
+    env = {"RFC_CACHE_DIR": str(cache)}
+    result = run_rfc("build", EXAMPLES / spec, "-o", out, "--estimate", cwd=ROOT, env=env)
+    assert result.returncode == 0, result.stderr
+    return (out / "report.md").read_text()
 
 
 def timing_rows(report: str) -> tuple[list[str], dict[str, list[str]]]:
@@ -75,17 +66,10 @@ def test_every_example_is_estimated_or_has_hls_cores():
 
 @pytest.mark.slow
 @pytest.mark.parametrize("spec", ESTIMATED)
-def test_every_example_meets_its_clock_under_the_routing_allowance(estimates, spec):
-    whole, _ = timing_rows(estimates(spec))
-    period_ns = 1000 / clock_mhz(spec)
-    # routing takes as long again as the cells: at most half the period of cell delay
-    assert ROUTING_FACTOR * float(whole[1]) <= period_ns, whole
-
-
-@pytest.mark.slow
-@pytest.mark.parametrize("spec", ESTIMATED)
-def test_no_path_runs_from_one_blocks_logic_into_anothers(estimates, spec):
-    whole, modules = timing_rows(estimates(spec))
+def test_every_example_meets_its_clock_and_no_path_runs_from_one_blocks_logic_into_anothers(
+    tmp_path, synthesis_cache, spec
+):
+    whole, modules = timing_rows(estimated(spec, tmp_path / "build", synthesis_cache))
     # the whole logic's path starts at a top-level input, or lies in one block, or runs
     # between a block and the register slice between it and the next: never block to block
     blocks = [cell.strip("`") for cell in whole[6].split(" → ")] if whole[6] != "—" else []
@@ -94,3 +78,6 @@ def test_no_path_runs_from_one_blocks_logic_into_anothers(estimates, spec):
     # so the whole logic is no slower than its slowest module plus a slice's register
     slowest = max(float(row[1]) for row in modules.values() if row[1] != "—")
     assert float(whole[1]) <= slowest + SLICE_NS, (whole, slowest)
+    # and routing takes as long again as the cells: at most half the period of cell delay
+    period_ns = 1000 / clock_mhz(spec)
+    assert ROUTING_FACTOR * float(whole[1]) <= period_ns, whole

@@ -109,7 +109,8 @@ def parse_sta(log: str) -> TimingPath | None:
     if end_step[2] == "<primary output>":
         end = nets[0]
     elif end_step[2] == "<unknown>":  # a carry output nothing reads: name the logic it ends
-        end = _register(re.sub(r"\[\d+\]$", "", nets[0]))
+        named = next((net for net in nets if not net.startswith("$")), nets[0])
+        end = _register(re.sub(r"\s*\[\d+\]$", "", named))
     else:
         end = _register(end_step[1])
     launch = next((i for i, (_, _, what) in enumerate(steps) if _pin(what) in _CLOCK_PINS), None)

@@ -206,3 +206,29 @@ def test_a_path_into_a_carry_output_nothing_reads_is_named_after_its_logic():
     path = parse_sta(log)
     assert path is not None
     assert (path.start, path.end, path.levels, path.delay_ps) == ("count", "count", 1, 2894)
+
+
+def test_logic_without_a_name_is_named_after_the_register_it_comes_from():
+    log = (
+        "Latest arrival time in 'sub' is 2990:\n"
+        "    2990 (<unknown>)\n"
+        "Warning: Critical-path does not terminate in a recognised endpoint.\n"
+        "           $abc$58928$aiger58927$595\n"
+        "    2990 $auto$alumacc.cc:485:replace_alu$18438.carry4 (CARRY4.DI->O)\n"
+        "           $abc$58928$aiger58927$665\n"
+        "    1030 $abc$58928$lut$aiger58927$665 (LUT5.I0->O)\n"
+        "           \\window_count [3]\n"
+        "     399 window_count[3]\\FDRE (FDRE.C->Q)\n"
+        "           $auto$clkbufmap.cc:294:execute$60237\n"
+        "      96 $auto$clkbufmap.cc:261:execute$60236 (BUFG.I->O)\n"
+        "           \\clk\n"
+        "       0   \\clk (<primary input>)\n"
+    )
+    path = parse_sta(log)
+    assert path is not None
+    assert (path.start, path.end, path.levels, path.delay_ps) == (
+        "window_count",
+        "window_count",
+        2,
+        2990 - 96,
+    )

@@ -112,8 +112,10 @@ def timing_section(
         "ships (Project X-Ray's Artix-7 figures). Routing is not in it: the Fmax assumes it "
         f"takes as long again as the cells (period = {ROUTING_FACTOR:g} x cell delay; "
         "docs/performance.md, Timing). Each module is timed on its own, its ports taken as "
-        "registered; the whole logic is timed from the modules' netlists, so a path that "
-        "crosses from one block into another appears only in its row (in: `a` → `b`).",
+        "registered; the whole logic's path is the latest of theirs and of the paths across "
+        "blocks, timed from the modules' boundary logic (the cells between their ports and "
+        "first registers), so a path that crosses from one block into another appears only in "
+        "its row (in: `a` → `b`).",
         "",
         *markdown_table(
             ["module", "cell delay (ns)", "levels", "Fmax (MHz)", f"{clock:g} MHz", "path", "in"],

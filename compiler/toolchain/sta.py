@@ -108,9 +108,12 @@ def parse_sta(log: str) -> TimingPath | None:
     end_step = steps[0]
     if end_step[2] == "<primary output>":
         end = nets[0]
-    elif end_step[2] == "<unknown>":  # a carry output nothing reads: name the logic it ends
-        named = next((net for net in nets if not net.startswith("$")), nets[0])
+    elif end_step[2] == "<unknown>" or "$" in end_step[1]:
+        # no name of its own (a carry output nothing reads, a DSP): the signal it comes from
+        named = next((net for net in nets if "$" not in net), nets[0])
         end = _register(re.sub(r"\s*\[\d+\]$", "", named))
+        if end_step[2] != "<unknown>":
+            end += f" ({end_step[2].split('.', 1)[0]})"
     else:
         end = _register(end_step[1])
     launch = next((i for i, (_, _, what) in enumerate(steps) if _pin(what) in _CLOCK_PINS), None)

@@ -232,3 +232,25 @@ def test_logic_without_a_name_is_named_after_the_register_it_comes_from():
         2,
         2990 - 96,
     )
+
+
+def test_a_cell_without_a_name_is_named_after_the_signal_it_comes_from_and_its_type():
+    log = (
+        "Latest arrival time in 'top' is 8786:\n"
+        "    8786 core.$mul$/tmp/rfc-hw-1/core.v:2011$220 (DSP48E1.B)\n"
+        "           core.$abc$1$aiger1$7 [3]\n"
+        "    8000 core.$abc$1$lut$aiger1$7 (LUT6.I0->O)\n"
+        "           \\core.stage_target [5]\n"
+        "     399 core.stage_target[5]\\FDRE (FDRE.C->Q)\n"
+        "           \\clk_buffered\n"
+        "      96 core.$auto$clkbufmap$1 (BUFG.I->O)\n"
+        "           \\clk\n"
+        "       0   \\clk (<primary input>)\n"
+    )
+    path = parse_sta(log)
+    assert path is not None
+    assert (path.start, path.end, path.levels) == (
+        "core.stage_target",
+        "core.stage_target (DSP48E1)",
+        1,
+    )

@@ -1,9 +1,11 @@
 """`rfc build --estimate` cold and warm, and the timing it reports, for the example systems.
 
 Cold: an empty module cache (every module of hw/verilog/ mapped by Yosys, two at a time, then
-the whole logic timed); warm: the same build again, every figure from the cache. Prints a
-Markdown table with the wall times against their targets and the whole logic's critical
-path and Fmax from report.md.
+the paths across blocks timed); warm: the same build again, every figure from the cache. Prints
+a Markdown table with each wall time and CPU time (the `rfc` process and its Yosys processes,
+which the shared machine's load does not inflate), the load average while it ran, the anchor
+(the figure before this flow), the target and the ratio of the figure to the target, then the
+whole logic's critical path and Fmax from report.md.
 
 Usage: python tools/bench_estimate.py [--systems quaternion franka]
 """
@@ -11,24 +13,53 @@ Usage: python tools/bench_estimate.py [--systems quaternion franka]
 from __future__ import annotations
 
 import argparse
+import datetime
 import os
+import resource
 import subprocess
 import sys
 import tempfile
 import time
+from dataclasses import dataclass
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 
-#: name → (spec, cold target in seconds, warm target in seconds); None where none was set.
+
+@dataclass(frozen=True)
+class System:
+    """An example to estimate, with the figures it is measured against (seconds, None: none)."""
+
+    spec: Path
+    cold_anchor: float | None
+    cold_target: float
+    warm_anchor: float | None
+    warm_target: float | None
+
+
+QUATERNION = ROOT / "examples/quaternion_to_euler"
+#: The anchors: `rfc build --estimate` before the boundary-logic flow, at a load of 12 to 14,
+#: when the quaternion example shipped the iterative core (the pipelined one has none).
 SYSTEMS = {
-    "quaternion": (ROOT / "examples/quaternion_to_euler/project.yaml", 30.0, 3.0),
-    "franka": (ROOT / "examples/franka_fk/franka_fk.yaml", 120.0, None),
+    "quaternion": System(QUATERNION / "project.yaml", None, 30, None, 3),
+    "quaternion_iterative": System(QUATERNION / "project_iterative.yaml", 693, 30, 5.9, 3),
+    "franka": System(ROOT / "examples/franka_fk/franka_fk.yaml", 1262, 120, 6.7, None),
 }
 
 
-def build(spec: Path, out: Path, cache: Path) -> tuple[float, str]:
-    """Wall time of one `rfc build --estimate`, and its report."""
+@dataclass(frozen=True)
+class Run:
+    """One build: wall and CPU seconds, the load average at its end, its report."""
+
+    wall: float
+    cpu: float
+    load: float
+    report: str
+
+
+def build(spec: Path, out: Path, cache: Path) -> Run:
+    """Run one `rfc build --estimate` and measure it."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.perf_counter()
     subprocess.run(
         [sys.executable, "-m", "rfc", "build", spec, "-o", out, "--estimate"],
@@ -37,7 +68,10 @@ def build(spec: Path, out: Path, cache: Path) -> tuple[float, str]:
         cwd=ROOT,
         env={**os.environ, "RFC_CACHE_DIR": str(cache)},
     )
-    return time.perf_counter() - start, (out / "report.md").read_text()
+    wall = time.perf_counter() - start
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    return Run(wall, cpu, os.getloadavg()[0], (out / "report.md").read_text())
 
 
 def whole_logic(report: str) -> str:
@@ -48,25 +82,34 @@ def whole_logic(report: str) -> str:
     return f"{cells[1]} ns, {cells[2]} levels, {cells[3]} MHz: {cells[5]} ({cells[6]})"
 
 
+def row(name: str, what: str, run: Run, anchor: float | None, target: float | None) -> str:
+    """A table row: the figure against its anchor and target (ratio > 1: over the target)."""
+    ratio = f"{run.wall / target:.2f} x the target" if target else "—"
+    goal = f"≤ {target:g} s" if target else "—"
+    return (
+        f"| {name} | {what} | {run.wall:.1f} s | {run.cpu:.1f} s | {run.load:.1f} | "
+        f"{f'{anchor:g} s' if anchor else '—'} | {goal} | {ratio} | {datetime.date.today()} |"
+    )
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--systems", nargs="+", default=list(SYSTEMS), choices=list(SYSTEMS))
     args = parser.parse_args()
-    print("| system | cold | target | warm | target | whole logic (cell delay, Fmax, path) |")
-    print("|---|---:|---:|---:|---:|---|")
+    print("| system | build | wall | CPU | load | anchor | target | ratio | date |")
+    print("|---|---|---:|---:|---:|---:|---:|---|---|")
+    paths = []
     for name in args.systems:
-        spec, cold_target, warm_target = SYSTEMS[name]
+        system = SYSTEMS[name]
         with tempfile.TemporaryDirectory(prefix="rfc-bench-estimate-") as scratch:
             work = Path(scratch)
-            cold, report = build(spec, work / "cold", work / "cache")
-            warm, again = build(spec, work / "warm", work / "cache")
-        assert report == again, "the warm build reported other figures than the cold one"
-        targets = [f"≤ {t:g} s" if t else "—" for t in (cold_target, warm_target)]
-        print(
-            f"| {name} | {cold:.1f} s | {targets[0]} | {warm:.1f} s | {targets[1]} "
-            f"| {whole_logic(report)} |",
-            flush=True,
-        )
+            cold = build(system.spec, work / "cold", work / "cache")
+            print(row(name, "cold", cold, system.cold_anchor, system.cold_target), flush=True)
+            warm = build(system.spec, work / "warm", work / "cache")
+            print(row(name, "warm", warm, system.warm_anchor, system.warm_target), flush=True)
+        assert cold.report == warm.report, "the warm build reported other figures than the cold"
+        paths.append(f"- {name}: {whole_logic(cold.report)}")
+    print("\nWhole logic (cell delay, levels, Fmax, path):", *paths, sep="\n")
 
 
 if __name__ == "__main__":

@@ -32,9 +32,10 @@ _MODULES = {
     "Resources": "yosys",
     "estimate_modules": "yosys",
     "estimate_resources": "yosys",
+    "crossing_timing": "yosys",
     "estimate_timing": "yosys",
+    "logic_timing": "yosys",
     "module_estimate": "yosys",
-    "system_timing": "yosys",
 }
 
 __all__ = sorted(_MODULES)

@@ -1,4 +1,4 @@
-"""Timing without vendor tools: Yosys' `sta` on a netlist mapped to the 7-series, read back.
+"""Timing without vendor tools: Yosys' `sta` on a netlist mapped to the 7-series.
 
 Yosys annotates its 7-series cells (LUTs, CARRY4, MUXF7/8, flip-flops, DSP48E1, block RAM)
 with delays from Project X-Ray's Artix-7 timing database, the fabric of the xc7z020; `sta`
@@ -11,29 +11,22 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
-from pathlib import Path
 
 #: Estimated period over cell delay: routing takes about as much again as the cells (the
 #: "50/50 rule" of Xilinx's timing guides for a design before placement; docs/performance.md).
 ROUTING_FACTOR = 2.0
 
 
-def sta_commands(log: Path) -> str:
-    """The Yosys commands that time a mapped netlist already read, writing `sta`'s report to `log`.
-
-    The cells' library must have been read with `-specify` (carries and wide muxes get their
-    delays that way). Private names become those of the signals the cells drive, so that the
-    path names registers rather than ``$abc$123``.
-    """
-    return f"rename -hide w:_*_ c:_*_; flatten; autoname; tee -q -o {log} sta"
-
-
 _HEADER = re.compile(r"^Latest arrival time in '(?P<module>[^']+)' is (?P<arrival>-?\d+):")
 _STEP = re.compile(r"^\s+(?P<arrival>-?\d+)\s+(?P<name>.*?)\s*\((?P<what>[^()]*)\)\s*$")
 #: Pins a path starts from when it leaves a register (flip-flop, DSP, block RAM, LUT RAM).
 _CLOCK_PINS = frozenset({"C", "CLK", "CLKARDCLK", "CLKBWRCLK", "WCLK"})
-#: The part of a name `autoname` appends after the signal a cell drives (`count_FDRE_Q_3`).
-_CELL_SUFFIX = re.compile(r"_(?:FD[A-Z]*|LUT\d|CARRY4|MUXF\d|DSP48E1|RAM\w*|SRL\w*|BUFG)_.*$")
+#: The part of a register's name after the signal it drives: the bit and the cell type that
+#: ``rename -wire`` appends (``count[3]\\FDRE``), or what ``autoname`` appends
+#: (``count_FDRE_Q_3``).
+_CELL_SUFFIX = re.compile(
+    r"(?:\[\d+\])?\\\w+$|_(?:FD[A-Z]*|LUT\d|CARRY4|MUXF\d|DSP48E1|RAM\w*|SRL\w*|BUFG)_.*$"
+)
 
 
 @dataclass(frozen=True)
@@ -115,8 +108,12 @@ def parse_sta(log: str) -> TimingPath | None:
     end_step = steps[0]
     if end_step[2] == "<primary output>":
         end = nets[0]
-    elif end_step[2] == "<unknown>":  # a carry output nothing reads: name the logic it ends
-        end = _register(re.sub(r"\[\d+\]$", "", nets[0]))
+    elif end_step[2] == "<unknown>" or "$" in end_step[1]:
+        # no name of its own (a carry output nothing reads, a DSP): the signal it comes from
+        named = next((net for net in nets if "$" not in net), nets[0])
+        end = _register(re.sub(r"\s*\[\d+\]$", "", named))
+        if end_step[2] != "<unknown>":
+            end += f" ({end_step[2].split('.', 1)[0]})"
     else:
         end = _register(end_step[1])
     launch = next((i for i, (_, _, what) in enumerate(steps) if _pin(what) in _CLOCK_PINS), None)

@@ -1,13 +1,14 @@
 """Resource and timing estimates without vendor tools: Yosys `synth_xilinx` for the 7-series.
 
 `module_estimate` maps one module of rfc's own Verilog out of context with `-abc9` (delay-aware
-LUT mapping), counts its cells, times it with `sta` and keeps the mapped netlist, all cached by
-the content of its file (a system's estimate sums its modules, so a rebuild or a sibling system
-that shares the accelerator maps only what changed); `estimate_modules` runs several at once,
-and `system_timing` times the whole logic from the modules' mapped netlists, so that paths
-across blocks are seen without mapping anything again. `estimate_resources` and
-`estimate_timing` go through GHDL's synthesis for designs that exist only in VHDL (a scheduler
-or converter on its own).
+LUT mapping), counts its cells, times it with `sta` and keeps its boundary logic (the mapped
+cells between its ports and its first registers), all cached by the content of its file (a
+system's estimate sums its modules, so a rebuild or a sibling system that shares the
+accelerator maps only what changed); `estimate_modules` runs several at once, and
+`logic_timing` times a whole logic from them: each block's own path, and the paths that cross
+blocks from the modules' boundary logic (`crossing_timing`), without mapping or reading their
+insides again. `estimate_resources` and `estimate_timing` go through
+GHDL's synthesis for designs that exist only in VHDL (a scheduler or converter on its own).
 """
 
 from __future__ import annotations
@@ -20,7 +21,7 @@ import shutil
 import subprocess
 import tempfile
 import threading
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from functools import cache
@@ -28,7 +29,7 @@ from pathlib import Path
 
 from rfc.toolchain.convert import canonical_lines
 from rfc.toolchain.ghdl import synthesize_verilog
-from rfc.toolchain.sta import TimingPath, parse_sta, sta_commands
+from rfc.toolchain.sta import TimingPath, parse_sta
 
 _LUTS = ("LUT1", "LUT2", "LUT3", "LUT4", "LUT5", "LUT6")
 _FFS = ("FDRE", "FDSE", "FDCE", "FDPE", "FDR", "FDS", "FDC", "FDP", "FD")
@@ -84,11 +85,21 @@ def estimate_resources(files: Sequence[Path], top: str) -> Resources:
 
 
 #: Changes whenever the way a module is mapped or timed changes, so old cache entries go unused.
-_FLOW = "synth_xilinx -family xc7 -noiopad -abc9 -flatten, sta of the mapped netlist, v2"
+_FLOW = "synth_xilinx -family xc7 -noiopad -abc9 -flatten, sta, boundary logic, v3"
 #: How many modules are mapped at once (the development machines have two cores).
 WORKERS = 2
 #: The 7-series cell library with its delays (`sta` needs them; `synth_xilinx` keeps none).
 _CELLS = "read_verilog -lib -specify +/xilinx/cells_sim.v"
+#: Cells that hold state: a path starts at their clock and ends at their inputs.
+_REGISTERS = "t:FD* t:DSP48E1 t:RAMB* t:SRL* t:RAM*"
+#: Flip-flops, whose data and control pins end a path and whose output starts one.
+_FLIP_FLOPS = "FDRE,FDSE,FDCE,FDPE"
+#: The cells between a module's ports and its first registers, the clock buffers with them: the
+#: input cone of every output back to the flip-flops that launch it, and the output cone of
+#: every input up to the flip-flops that capture it (through DSP and RAM cells, cautiously).
+_BOUNDARY = (
+    f"o:* %ci*:-{_FLIP_FLOPS}[D,CE,R,S,CLR,PRE] i:* %co*:-{_FLIP_FLOPS}[Q]:-BUFG %u t:BUFG %u"
+)
 
 
 @dataclass(frozen=True)
@@ -98,7 +109,9 @@ class ModuleEstimate:
     Attributes:
         resources: Its cells.
         timing: Its critical path, None when nothing in it is timed (a module of wires).
-        netlist: Its mapped netlist (Verilog of 7-series cells), for timing a whole system.
+        netlist: Its boundary logic, mapped (Verilog of 7-series cells): the cells on the paths
+            from its inputs to its first registers and from its last registers to its outputs,
+            for timing the paths that cross from one block into another.
     """
 
     resources: Resources
@@ -115,7 +128,7 @@ def cache_directory() -> Path:
 def module_estimate(verilog: Path, top: str) -> ModuleEstimate:
     """Map one Verilog file to the 7-series with `-abc9`; count and time its module `top`.
 
-    The figures and the mapped netlist are cached by the file's content, the module and
+    The figures and the boundary logic are cached by the file's content, the module and
     Yosys's version.
 
     Raises:
@@ -131,18 +144,17 @@ def module_estimate(verilog: Path, top: str) -> ModuleEstimate:
     entry.parent.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory(prefix="rfc-synth-") as scratch:
         work = Path(scratch)
-        mapped = work / f"{top}.mapped.v"
-        report = work / "stat.json"
+        boundary, report, log = work / f"{top}.boundary.v", work / "stat.json", work / "sta.log"
         _run_yosys(
             f"read_verilog {verilog}; synth_xilinx -family xc7 -noiopad -abc9 -flatten "
-            f"-top {top}; tee -q -o {report} stat -json; write_verilog -noattr {mapped}; "
-            f"design -reset; {_CELLS}; read_verilog {mapped}; hierarchy -top {top}; "
-            f"{sta_commands(work / 'sta.log')}",
+            f"-top {top}; tee -q -o {report} stat -json; {_timing_commands(top, log)}; "
+            f"select -set boundary {_BOUNDARY}; setattr -set keep 1 @boundary; "
+            f"delete c:* @boundary %d; opt_clean; write_verilog -noattr {boundary}",
             str(verilog),
         )
         resources = _resources(report)
-        timing = parse_sta((work / "sta.log").read_text())
-        _publish(netlist, mapped.read_text())
+        timing = parse_sta(log.read_text())
+        _publish(netlist, boundary.read_text())
     value = {"resources": dataclasses.asdict(resources)}
     value["timing"] = None if timing is None else dataclasses.asdict(timing)
     _publish(entry, json.dumps(value))
@@ -155,10 +167,13 @@ def estimate_modules(modules: Sequence[tuple[Path, str]]) -> list[ModuleEstimate
         return list(pool.map(lambda module: module_estimate(*module), modules))
 
 
-def system_timing(netlists: Sequence[Path], top_verilog: Path, top: str) -> TimingPath | None:
-    """The critical path of a whole logic: its top level over its modules' mapped netlists.
+def crossing_timing(netlists: Sequence[Path], top_verilog: Path, top: str) -> TimingPath | None:
+    """The critical path among the paths that leave or enter a block of a whole logic.
 
-    Paths that cross from one block into another show up here and in no module's own path.
+    `netlists` are the modules' boundary logic (`ModuleEstimate.netlist`): every path that
+    crosses from one block into another runs through them from register to register, so `sta`
+    of the top level over them, flattened, finds the latest such path as it would over the
+    whole netlists, at a fraction of their size. Paths inside one block are the modules' own.
     The result is cached by the content of every file.
 
     Raises:
@@ -177,13 +192,41 @@ def system_timing(netlists: Sequence[Path], top_verilog: Path, top: str) -> Timi
         log = Path(scratch) / "sta.log"
         files = " ".join(str(f) for f in (*netlists, top_verilog))
         _run_yosys(
-            f"{_CELLS}; read_verilog {files}; hierarchy -top {top}; {sta_commands(log)}",
+            f"{_CELLS}; read_verilog {files}; hierarchy -top {top}; flatten; "
+            f"rename -wire {_REGISTERS}; tee -q -o {log} sta",
             top,
         )
         timing = parse_sta(log.read_text())
     entry.parent.mkdir(parents=True, exist_ok=True)
     _publish(entry, json.dumps(None if timing is None else dataclasses.asdict(timing)))
     return timing
+
+
+def logic_timing(
+    instances: Mapping[str, ModuleEstimate], top_verilog: Path, top: str
+) -> TimingPath | None:
+    """The critical path of a whole logic, from its blocks' estimates (by instance label).
+
+    A path of the flattened logic either stays inside one block, where it is that module's own
+    (its ports taken as registered: a path from an input there is never longer than the real
+    one through that input, which crosses), or crosses into or out of a block, where
+    `crossing_timing` finds it. The latest of them is the one `sta` of the whole flattened
+    netlist finds; a path inside a block is named by its instance (``label.register``).
+
+    Raises:
+        RuntimeError: Yosys is missing or fails.
+    """
+    netlists = list(dict.fromkeys(module.netlist for module in instances.values()))
+    paths = [crossing_timing(netlists, top_verilog, top)]
+    paths += [_inside(label, module.timing) for label, module in instances.items()]
+    return max((p for p in paths if p is not None), key=lambda p: p.delay_ps, default=None)
+
+
+def _inside(label: str, path: TimingPath | None) -> TimingPath | None:
+    """A module's own path, named as it lies in the whole logic (under its instance label)."""
+    if path is None:
+        return None
+    return dataclasses.replace(path, start=f"{label}.{path.start}", end=f"{label}.{path.end}")
 
 
 def estimate_timing(files: Sequence[Path], top: str) -> TimingPath | None:
@@ -197,14 +240,28 @@ def estimate_timing(files: Sequence[Path], top: str) -> TimingPath | None:
         work = Path(scratch)
         verilog = work / f"{top}.v"
         verilog.write_text(synthesize_verilog(files, top, work))
-        mapped, log = work / f"{top}.mapped.v", work / "sta.log"
+        log = work / "sta.log"
         _run_yosys(
             f"read_verilog {verilog}; synth_xilinx -family xc7 -noiopad -abc9 -flatten "
-            f"-top {top}; write_verilog -noattr {mapped}; design -reset; {_CELLS}; "
-            f"read_verilog {mapped}; hierarchy -top {top}; {sta_commands(log)}",
+            f"-top {top}; {_timing_commands(top, log)}",
             top,
         )
         return parse_sta(log.read_text())
+
+
+def _timing_commands(top: str, log: Path) -> str:
+    """Time the netlist `synth_xilinx` just mapped, writing `sta`'s report to `log`.
+
+    `synth_xilinx` leaves the cell library without the delays of carries and wide muxes, so
+    `sta` would count them as free: the library is read again with its `specify` blocks (in
+    place, rather than writing the netlist out and reading it back: for the largest modules
+    that took minutes). Registers are named after the signals they drive, so that a path names
+    registers rather than ``$abc$123``.
+    """
+    return (
+        f"delete =A:blackbox =A:whitebox; {_CELLS}; hierarchy -top {top}; "
+        f"rename -wire {_REGISTERS}; tee -q -o {log} sta"
+    )
 
 
 def _read_entry(entry: Path, netlist: Path) -> ModuleEstimate:

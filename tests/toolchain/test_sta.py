@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+import shutil
+import subprocess
+
 import pytest
 
-from rfc.toolchain import module_estimate, system_timing
+from rfc.toolchain import crossing_timing, logic_timing, module_estimate
 from rfc.toolchain.sta import ROUTING_FACTOR, parse_sta
 
 #: A register feeding an adder of `bits` bits into a register, and a wire from input to output.
@@ -35,6 +38,17 @@ module consumer (input clk, input [15:0] in, output reg [15:0] result);
   always @(posedge clk) result <= in + {in[3:0], in[15:4]};
 endmodule
 """
+#: The producer with its output registered: the longest path is then inside it (48-bit adder).
+REGISTERED_PRODUCER = """
+module producer (input clk, output reg [15:0] out);
+  reg [47:0] count, step;
+  always @(posedge clk) begin
+    count <= count + step;
+    step <= step ^ {count[46:0], count[47]};
+    out <= count[15:0];
+  end
+endmodule
+"""
 PAIR = """
 module pair (input clk, output [15:0] result);
   wire [15:0] handed;
@@ -42,6 +56,10 @@ module pair (input clk, output [15:0] result);
   consumer take (.clk(clk), .in(handed), .result(result));
 endmodule
 """
+
+
+#: The pair's instances and the module each is.
+PAIR_INSTANCES = {"make": "producer", "take": "consumer"}
 
 
 @pytest.fixture(autouse=True)
@@ -71,27 +89,61 @@ def test_a_wider_adder_has_a_longer_carry_path_between_its_registers(tmp_path):
     assert wide.fmax_mhz == pytest.approx(1e6 / (ROUTING_FACTOR * wide.delay_ps))
 
 
-def test_module_figures_come_back_from_the_cache_with_their_netlist(tmp_path):
+def test_module_figures_come_back_from_the_cache_with_their_boundary_logic(tmp_path):
     source = write_adder(tmp_path, 8)
     first = module_estimate(source, "adder8")
     again = module_estimate(source, "adder8")
     assert again == first
     assert first.resources.ff == 24
-    assert "CARRY4" in first.netlist.read_text()
+    assert first.resources.carry > 0
+    boundary = first.netlist.read_text()
+    # the registers at the ports and the inverter from i to o, not the adder between registers
+    assert "ra[0]" in boundary
+    assert "sum[7]" in boundary
+    assert "INV" in boundary
+    assert "CARRY4" not in boundary
+
+
+def write_pair(folder, producer=PRODUCER):
+    """The two blocks and their top level; returns each block's estimate and the top's file."""
+    files = {name: folder / f"{name}.v" for name in ("producer", "consumer", "pair")}
+    for name, text in (("producer", producer), ("consumer", CONSUMER), ("pair", PAIR)):
+        files[name].write_text(text)
+    parts = {label: module_estimate(files[m], m) for label, m in PAIR_INSTANCES.items()}
+    return parts, files
+
+
+def whole_netlist(source, top, folder):
+    """`top` mapped as `module_estimate` maps it, every cell kept: the flattened oracle's input."""
+    mapped = folder / f"{top}.whole.v"
+    script = (
+        f"read_verilog {source}; synth_xilinx -family xc7 -noiopad -abc9 -flatten -top {top}; "
+        f"rename -wire t:FD*; write_verilog -noattr {mapped}"  # registers named as rfc names them
+    )
+    subprocess.run([shutil.which("yosys") or "yosys", "-q", "-p", script], check=True)
+    return mapped
 
 
 def test_the_whole_design_finds_the_path_that_crosses_two_blocks(tmp_path):
-    files = {name: tmp_path / f"{name}.v" for name in ("producer", "consumer", "pair")}
-    for name, text in (("producer", PRODUCER), ("consumer", CONSUMER), ("pair", PAIR)):
-        files[name].write_text(text)
-    parts = [module_estimate(files[n], n) for n in ("producer", "consumer")]
-    whole = system_timing([p.netlist for p in parts], files["pair"], "pair")
+    parts, files = write_pair(tmp_path)
+    whole = logic_timing(parts, files["pair"], "pair")
     assert whole is not None
     assert (whole.start_cell, whole.end_cell) == ("make", "take")
     assert whole.start.startswith("make.count")
     assert whole.end.startswith("take.result")
     # each block alone ends or starts at its port; together the two halves add up
-    assert whole.delay_ps > max(p.timing.delay_ps for p in parts if p.timing)
+    assert whole.delay_ps > max(p.timing.delay_ps for p in parts.values() if p.timing)
+
+
+@pytest.mark.parametrize("producer", [PRODUCER, REGISTERED_PRODUCER], ids=["across", "inside"])
+def test_the_boundary_logic_times_a_logic_as_its_whole_flattened_netlist_does(tmp_path, producer):
+    parts, files = write_pair(tmp_path, producer)
+    netlists = [whole_netlist(files[m], m, tmp_path) for m in ("producer", "consumer")]
+    flattened = crossing_timing(netlists, files["pair"], "pair")
+    assert flattened is not None
+    assert logic_timing(parts, files["pair"], "pair") == flattened
+    boundaries = sum(len(p.netlist.read_text()) for p in parts.values())
+    assert boundaries < sum(len(n.read_text()) for n in netlists)
 
 
 LOG = """
@@ -154,3 +206,51 @@ def test_a_path_into_a_carry_output_nothing_reads_is_named_after_its_logic():
     path = parse_sta(log)
     assert path is not None
     assert (path.start, path.end, path.levels, path.delay_ps) == ("count", "count", 1, 2894)
+
+
+def test_logic_without_a_name_is_named_after_the_register_it_comes_from():
+    log = (
+        "Latest arrival time in 'sub' is 2990:\n"
+        "    2990 (<unknown>)\n"
+        "Warning: Critical-path does not terminate in a recognised endpoint.\n"
+        "           $abc$58928$aiger58927$595\n"
+        "    2990 $auto$alumacc.cc:485:replace_alu$18438.carry4 (CARRY4.DI->O)\n"
+        "           $abc$58928$aiger58927$665\n"
+        "    1030 $abc$58928$lut$aiger58927$665 (LUT5.I0->O)\n"
+        "           \\window_count [3]\n"
+        "     399 window_count[3]\\FDRE (FDRE.C->Q)\n"
+        "           $auto$clkbufmap.cc:294:execute$60237\n"
+        "      96 $auto$clkbufmap.cc:261:execute$60236 (BUFG.I->O)\n"
+        "           \\clk\n"
+        "       0   \\clk (<primary input>)\n"
+    )
+    path = parse_sta(log)
+    assert path is not None
+    assert (path.start, path.end, path.levels, path.delay_ps) == (
+        "window_count",
+        "window_count",
+        2,
+        2990 - 96,
+    )
+
+
+def test_a_cell_without_a_name_is_named_after_the_signal_it_comes_from_and_its_type():
+    log = (
+        "Latest arrival time in 'top' is 8786:\n"
+        "    8786 core.$mul$/tmp/rfc-hw-1/core.v:2011$220 (DSP48E1.B)\n"
+        "           core.$abc$1$aiger1$7 [3]\n"
+        "    8000 core.$abc$1$lut$aiger1$7 (LUT6.I0->O)\n"
+        "           \\core.stage_target [5]\n"
+        "     399 core.stage_target[5]\\FDRE (FDRE.C->Q)\n"
+        "           \\clk_buffered\n"
+        "      96 core.$auto$clkbufmap$1 (BUFG.I->O)\n"
+        "           \\clk\n"
+        "       0   \\clk (<primary input>)\n"
+    )
+    path = parse_sta(log)
+    assert path is not None
+    assert (path.start, path.end, path.levels) == (
+        "core.stage_target",
+        "core.stage_target (DSP48E1)",
+        1,
+    )

@@ -2,8 +2,9 @@
 
 Each module of ``hw/verilog/`` is mapped to the 7-series out of context (Yosys `synth_xilinx
 -abc9`, two at a time, cached by content: `rfc.toolchain.module_estimate`); the resources are
-summed over the top level's instances, and the whole logic is timed once more from the modules'
-mapped netlists, so that a path from one block into another is found too. An estimated Fmax
+summed over the top level's instances, and the whole logic's critical path is the latest of the
+modules' own and of the paths across blocks, timed from the modules' boundary logic
+(`rfc.toolchain.logic_timing`). An estimated Fmax
 below the spec's ``clockMHz`` is a `TimingWarning` naming the path.
 """
 
@@ -19,7 +20,7 @@ from rfc.ir.model import Design
 from rfc.lower.artifacts import ReportSection
 from rfc.lower.report import markdown_table
 from rfc.lower.system.generate import SystemHardware
-from rfc.toolchain import ModuleEstimate, Resources, TimingPath, estimate_modules, system_timing
+from rfc.toolchain import ModuleEstimate, Resources, TimingPath, estimate_modules, logic_timing
 from rfc.toolchain.sta import ROUTING_FACTOR
 
 
@@ -70,7 +71,8 @@ def estimate_logic(system: SystemHardware) -> LogicEstimate:
     copies = Counter(entity.name for _, entity, _ in system.netlist.instances())
     names = list(copies)
     modules = dict(zip(names, estimate_modules([(files[n], n) for n in names]), strict=True))
-    timing = system_timing([m.netlist for m in modules.values()], files[system.top], system.top)
+    instances = {label: modules[entity.name] for label, entity, _ in system.netlist.instances()}
+    timing = logic_timing(instances, files[system.top], system.top)
     return LogicEstimate(modules, copies, timing)
 
 
@@ -110,8 +112,10 @@ def timing_section(
         "ships (Project X-Ray's Artix-7 figures). Routing is not in it: the Fmax assumes it "
         f"takes as long again as the cells (period = {ROUTING_FACTOR:g} x cell delay; "
         "docs/performance.md, Timing). Each module is timed on its own, its ports taken as "
-        "registered; the whole logic is timed from the modules' netlists, so a path that "
-        "crosses from one block into another appears only in its row (in: `a` → `b`).",
+        "registered; the whole logic's path is the latest of theirs and of the paths across "
+        "blocks, timed from the modules' boundary logic (the cells between their ports and "
+        "first registers), so a path that crosses from one block into another appears only in "
+        "its row (in: `a` → `b`).",
         "",
         *markdown_table(
             ["module", "cell delay (ns)", "levels", "Fmax (MHz)", f"{clock:g} MHz", "path", "in"],

@@ -13,12 +13,6 @@ from tests.support.cli import run_rfc
 ROOT = Path(__file__).resolve().parents[3]
 
 
-@pytest.fixture(scope="module")
-def synthesis_cache(tmp_path_factory):
-    """One cache for the builds below: the second maps nothing again."""
-    return tmp_path_factory.mktemp("synthesis-cache")
-
-
 def build(folder: Path, clock_mhz: float, cache: Path):
     text = point_system("MyHDL", "pass.py", "pass_through")
     text = text.replace("scheduler: PFP}", f"scheduler: PFP, clockMHz: {clock_mhz}}}")

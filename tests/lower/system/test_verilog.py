@@ -116,12 +116,6 @@ def test_a_vhdl_accelerator_ghdl_cannot_synthesize_stays_vhdl_and_is_not_estimat
     assert not (tmp_path / "estimated").exists()
 
 
-@pytest.fixture(scope="module")
-def synthesis_cache(tmp_path_factory):
-    """One cache of module figures for the estimates below: the accelerator is mapped once."""
-    return tmp_path_factory.mktemp("synthesis-cache")
-
-
 @pytest.mark.slow
 @pytest.mark.parametrize(
     ("middleware", "scheduler"),
@@ -156,28 +150,3 @@ def test_estimate_maps_the_quaternion_system_in_ros1_and_with_every_scheduler(
     # the CORDIC accelerator alone takes thousands of LUTs; the manager's scheduler is small
     assert 5000 < lut < 30000
     assert 1000 < ff < 10000
-
-
-@pytest.mark.slow
-def test_no_path_runs_from_one_blocks_logic_into_anothers(tmp_path, synthesis_cache):
-    """Yosys' STA of the whole quaternion logic against each module's own (the cache above)."""
-    sources = {f"{name}__py": (QUATERNION / f"{name}.py").read_text() for name in CORDIC}
-    spec = write_spec(tmp_path, (QUATERNION / "project.yaml").read_text(), **sources)
-    out = tmp_path / "build"
-    env = {"RFC_CACHE_DIR": str(synthesis_cache)}
-    result = run_rfc("build", spec, "-o", out, "--estimate", cwd=ROOT, env=env)
-    assert result.returncode == 0, result.stderr
-    timing = (out / "report.md").read_text().split("## Timing")[1]
-    rows = [[c.strip() for c in line.strip("|").split("|")] for line in timing.splitlines()]
-    rows = [row for row in rows if len(row) == 7 and row[0].startswith(("`", "**"))]
-    whole = next(row for row in rows if "whole logic" in row[0])
-    modules = {row[0].strip("`"): row for row in rows if row is not whole}
-    assert any(name.endswith("_slice0") for name in modules)
-    # the whole logic's path starts at a top-level input, or lies in one block, or runs
-    # between a block and the register slice between it and the next: never block to block
-    blocks = [cell.strip("`") for cell in whole[6].split(" → ")] if whole[6] != "—" else []
-    crossing = [cell for cell in blocks if cell != "input"]
-    assert len(set(crossing)) <= 1 or any(cell.endswith("_slice") for cell in crossing), whole
-    # so the whole logic is no slower than its slowest module plus a slice's register
-    slowest = max(float(row[1]) for row in modules.values() if row[1] != "—")
-    assert float(whole[1]) <= slowest + 0.5, (whole, slowest)

@@ -127,6 +127,13 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
     counts = {s.port: checker[s.port] for s in length_formula(checking).stages if s.port}
     size = Signal(intbv(0)[LENGTH_BITS + 2 :])
     sizing = frame_length_circuit(checking, counts, size)
+    # the size and its padded bound are judged a cycle after the last sequence starts, from
+    # registers: the frame-length circuit and the comparisons are then two paths, not one
+    size_held, allowed_held = (
+        Signal(intbv(0)[LENGTH_BITS + 2 :]),
+        Signal(intbv(0)[LENGTH_BITS + 2 :]),
+    )
+    was_started = Signal(bool(0))
     storing, replaying, passing, dropping = (int(s) for s in _State)
     maximum, truncated, trailing = int(Reason.MAXIMUM), int(Reason.TRUNCATED), int(Reason.TRAILING)
 
@@ -162,27 +169,31 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
 
     pad = cdr_pad if checking.is_cdr else no_pad
 
+    @always(clk.posedge)
+    def hold_size() -> None:
+        size_held.next = size
+        allowed_held.next = allowed
+        was_started.next = state == storing and c_rst != c_rst.active and started
+
     @always_comb
     def judge() -> None:
-        # Once the checker starts the last sequence every length is known; a frame that ends
-        # before is judged by the checker alone, as a whole.
+        # Once the checker has started the last sequence every length is known; a frame that
+        # ends before is judged by the checker alone, as a whole.
         judging = state == storing and c_rst != c_rst.active
-        decided.next = judging and (verdict or started)
+        decided.next = judging and (verdict or was_started)
         ok = False
         reason.next = maximum
         if failed:
             reason.next = cause
         elif overflow:
             reason.next = maximum
-        elif verdict:
-            ok = True
-        elif declared < size:
+        elif was_started and declared < size_held:
             reason.next = truncated
-        elif declared > allowed:
+        elif was_started and declared > allowed_held:
             reason.next = trailing
         else:
-            ok = True
-        drop.next = judging and (verdict or started) and not ok
+            ok = True  # the checker's verdict, or a started frame of the declared size
+        drop.next = judging and (verdict or was_started) and not ok
 
     @always_comb
     def give() -> None:
@@ -261,4 +272,7 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
         for r in DROP_REASONS
     ]
     held = [held_high(clk, rst, ready) for ready in readies]  # the checker takes everything
-    return parser, sizing, take, pad, judge, give, clear_checker, control, memory, counters, held
+    return (
+        parser, sizing, take, pad, hold_size, judge, give, clear_checker, control, memory,
+        counters, held,
+    )  # fmt: skip

@@ -92,10 +92,15 @@ def test_the_quaternion_node_answers_each_orientation_as_the_reference(quaternio
 
 
 def test_the_node_runs_with_the_compiler_deleted(quaternion_build, tmp_path):
-    """An installed copy holding rfc.runtime and no compiler module; sw/ and hw/ moved too."""
+    """An installed copy holding rfc.runtime and the layers below it, no compiler module.
+
+    sw/ and hw/ are moved too.
+    """
     package = tmp_path / "site" / "rfc"
     shutil.copytree(ROOT / "runtime", package / "runtime")
-    shutil.copy(ROOT / "compiler" / "__init__.py", package / "__init__.py")
+    shutil.copytree(ROOT / "compiler" / "messages", package / "messages")
+    for module in ("__init__.py", "errors.py", "user_code.py"):
+        shutil.copy(ROOT / "compiler" / module, package / module)
     moved = tmp_path / "deployed"
     shutil.copytree(quaternion_build / "sw", moved / "sw")
     shutil.copytree(quaternion_build / "hw", moved / "hw")
@@ -106,7 +111,7 @@ def test_the_node_runs_with_the_compiler_deleted(quaternion_build, tmp_path):
     launcher.write_text(
         "import importlib.util, runpy, sys\n"
         "import ros_wheels_bootstrapper  # what site would have run for the ROS wheels\n"
-        "for name in ('rfc.driver', 'rfc.ir', 'rfc.messages', 'rfc.lower', 'rfc.toolchain'):\n"
+        "for name in ('rfc.driver', 'rfc.ir', 'rfc.spec', 'rfc.lower', 'rfc.toolchain'):\n"
         "    assert importlib.util.find_spec(name) is None, name\n"
         "sys.argv = sys.argv[1:]\n"
         "runpy.run_path(sys.argv[0], run_name='__main__')\n"

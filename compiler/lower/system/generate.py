@@ -157,19 +157,18 @@ def generate_system(
         )
 
     guards = SubscriberGuards(identifier(design.project.name), width, directory, limits)
+    record_first_publishers: set[str] = set()
     for side, converters in (
         (Side.SUBSCRIBER, infrastructure.subscribers),
         (Side.PUBLISHER, infrastructure.publishers),
     ):
         for converter in converters:
             label = identifier(converter.block)
+            streamed_through = side is Side.PUBLISHER and record_first(design, converter)
+            if streamed_through:
+                record_first_publishers.add(converter.block)
             component = converter_component(
-                converter,
-                side,
-                directory,
-                f"{label}_{side.value}",
-                limits,
-                side is Side.PUBLISHER and record_first(design, converter),
+                converter, side, directory, f"{label}_{side.value}", limits, streamed_through
             )
             components.append(component)
             if component.buffers:
@@ -224,7 +223,10 @@ def generate_system(
             )
             into = connections[0].destination
             label = f"{identifier(into.block)}_{identifier(into.port or 'in')}_slice"
-            wire_connection(builder, complete, slices.insert(builder, targets[0], label), what)
+            sliced = slices.insert(
+                builder, targets[0], label, streams=into.block not in record_first_publishers
+            )
+            wire_connection(builder, complete, sliced, what)
             continue
         if len(targets) not in forks:
             forks[len(targets)] = fork_component(len(targets), directory, f"rfc_fork{len(targets)}")

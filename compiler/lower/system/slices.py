@@ -40,8 +40,14 @@ class RegisterSlices:
         self.components: list[Component] = []
         self._by_shape: dict[Fields, Component] = {}
 
-    def insert(self, builder: TopBuilder, target: Interface, label: str) -> Interface:
+    def insert(
+        self, builder: TopBuilder, target: Interface, label: str, streams: bool = True
+    ) -> Interface:
         """Put the slices labelled from `label` in front of `target`, wired to it.
+
+        `streams` false leaves a streamed message's sub-streams direct: a publisher that streams
+        its last stream through takes the producer's `msg_valid` as the end of its beats, which
+        a slice holding the last beats would contradict.
 
         Returns:
             The interface to wire the producer to: the slices' input sides where there are
@@ -50,9 +56,8 @@ class RegisterSlices:
         if _sliceable(builder, target):
             names = [n for n in target if n not in (_VALID, _READY)]
             return self._slice(builder, target, label, names, _VALID, _READY)
-        streams = _streams(builder, target)
         interface = dict(target)
-        for stream in streams:
+        for stream in _streams(builder, target) if streams else []:
             beat = [f"{stream}{suffix}" for suffix in _BEAT if f"{stream}{suffix}" in target]
             valid, ready = f"{stream}{_TVALID}", f"{stream}{_TREADY}"
             interface |= self._slice(builder, target, f"{label}_{stream}", beat, valid, ready)

@@ -8,7 +8,6 @@ identical, and the pass-through system's outputs must be the very bytes rosbags 
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 import numpy as np
@@ -18,29 +17,16 @@ from rfc.messages.rosbags_adapter import message_types, read_bag, write_bag
 from tests.examples.multi_type.test_system import TOPICS, image, scan, twist
 from tests.lower.system.systems import point_system, point_vhdl, write_spec
 from tests.support.cli import run_rfc
+from tests.support.sim_readings import replay_readings
 
 ROOT = Path(__file__).resolve().parents[2]
 QUATERNION = "geometry_msgs/msg/Quaternion"
 
 
-READINGS = {
-    "rtl": ("--simulator", "ghdl"),
-    "netlist": ("--netlist",),
-    "verilog": ("--simulator", "verilator"),
-}
-
-
 def replay_all(spec: Path, bag: Path, folder: Path, *options: str) -> dict[str, bytes]:
     """The output bag of each reading of the logic, as bytes."""
-    outputs = {}
-    for name, extra in READINGS.items():
-        out = folder / f"{name}.mcap"
-        args = ("sim", spec, "--bag", bag, "--out", out, "--json", *options, *extra)
-        result = run_rfc(*args, cwd=ROOT, env={"RFC_CACHE_DIR": str(folder / "cache")})
-        assert result.returncode == 0, result.stderr
-        assert json.loads(result.stdout)["dropped"] == []
-        outputs[name] = out.read_bytes()
-    return outputs
+    outputs = replay_readings(spec, bag, folder, *options)
+    return {name: out.read_bytes() for name, out in outputs.items()}
 
 
 @pytest.mark.slow

@@ -35,6 +35,7 @@ from rfc.lib.converters.sources import payload_bases, payload_sources, record_so
 from rfc.lib.converters.steps import End, Loop, Next, Payload, Plan, Record
 from rfc.lib.converters.tables import Kind, tables
 from rfc.lib.converters.wiring import bits_of, follow, loop_counters, select_bit
+from rfc.lib.slice import register_slice
 from rfc.messages.codec import default_values, encode
 
 
@@ -138,9 +139,16 @@ def rfc_publisher(plan: Plan, held: dict[str, Any] | None = None, **ports: Any) 
     through = plan.streamed_last
     streaming = through is not None
     through_at = through or 0
-    through_valid = (
-        ports[f"{plan.steps[through].stream}_tvalid"] if streaming else Constant(bool(0))
-    )
+    skid = []
+    pending = Constant(bool(0))  # a beat of the streamed-through stream waits at the port
+    through_valid = Constant(bool(0))  # a beat of it waits at the port or in the skid
+    if streaming:
+        ends = [f"{plan.steps[through].stream}_{end}" for end in ("tdata", "tvalid", "tready")]
+        outer = [ports[name] for name in ends]
+        inner = [Signal(intbv(0)[len(outer[0]) :]), Signal(bool(0)), Signal(bool(0))]
+        pending, through_valid = outer[1], Signal(bool(0))
+        skid.append(skid_through(clk, rst, outer, inner, through_valid))
+        ports = {**ports, **dict(zip(ends, inner, strict=True))}
     faulty, faulty_n, drain = (Signal(bool(0)) for _ in range(3))
     held = held or {}
     held_table = [0] * len(plan.steps)
@@ -222,7 +230,7 @@ def rfc_publisher(plan: Plan, held: dict[str, Any] | None = None, **ports: Any) 
             faulty_n.next = False
             running = True
         # the producer is done while the streamed-through stream still owes bytes
-        finished = msg_valid and pc == through_at
+        finished = msg_valid and pc == through_at and not pending
         moved_on = gone and (msg_valid or through_valid)
         ended = streaming and (finished or moved_on) and not stream_valid
         if running and owner_valid:
@@ -353,7 +361,7 @@ def rfc_publisher(plan: Plan, held: dict[str, Any] | None = None, **ports: Any) 
             if msg_ready and faulty_n:
                 mismatches.next = mismatches + 1
 
-    blocks = [control, registers, record_sources(plan, ports, rc, record_lanes)]
+    blocks = [control, registers, record_sources(plan, ports, rc, record_lanes), *skid]
     if len(channel_valids) > 1:
         blocks.append(select_bit(bits_of(channel_valids), owner_rom, pc, owner_valid))
     blocks.append(channel_readies(plan, ports, pc, next_element))
@@ -392,6 +400,25 @@ def rfc_publisher(plan: Plan, held: dict[str, Any] | None = None, **ports: Any) 
         )
     )
     return blocks
+
+
+@block
+def skid_through(clk: Any, rst: Any, outer: list[Any], inner: list[Any], waiting: Any) -> Any:
+    """A register slice from the streamed-through stream's port to the publisher's side of it.
+
+    Its ``tready`` then comes from a flip-flop, so no path runs from the publisher's frame
+    logic back into the producer. `outer` and `inner` are ``tdata``, ``tvalid``, ``tready`` of
+    the port and of the publisher's side; `waiting` is high while a beat waits at either, so
+    the stream has ended only once both are empty (a producer may raise ``msg_valid`` with its
+    last beat).
+    """
+    outer_valid, inner_valid = outer[1], inner[1]
+
+    @always_comb
+    def either() -> None:
+        waiting.next = outer_valid or inner_valid
+
+    return register_slice(clk, rst, *outer, *inner), either
 
 
 def _widened(signal: Any) -> list[Any]:

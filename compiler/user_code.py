@@ -1,10 +1,13 @@
 """Running the user's Python code (specs, sources, ROS-SW functions) so it cannot hang rfc.
 
-User code runs under a wall-clock time limit (`DEFAULT_TIME_LIMIT_S`, or the environment
-variable `TIME_LIMIT_ENV` in seconds): an endless loop becomes an `RfcError` naming the code, as
-does ``sys.exit()`` (which would otherwise end rfc silently with whatever status it gave). The
-limit is a ``SIGALRM`` timer, so it applies on the main thread of a POSIX process; nested user
-code (a spec importing a source) runs under the outermost limit.
+User code runs under a time limit (`DEFAULT_TIME_LIMIT_S`, or the environment variable
+`TIME_LIMIT_ENV` in seconds): an endless loop becomes an `RfcError` naming the code, as does
+``sys.exit()`` (which would otherwise end rfc silently with whatever status it gave). The limit
+counts the process's CPU time (``ITIMER_PROF``), so a loaded machine does not turn a long
+elaboration into a false "endless loop"; a call that blocks without computing is caught by a
+wall-clock timer at `WALL_FACTOR` times the limit. Both are interval timers, so they apply on
+the main thread of a POSIX process; nested user code (a spec importing a source) runs under the
+outermost limit.
 """
 
 from __future__ import annotations
@@ -23,12 +26,21 @@ from rfc.errors import RfcError, SourceLocation
 DEFAULT_TIME_LIMIT_S = 60.0
 #: The environment variable that changes it.
 TIME_LIMIT_ENV = "RFC_USER_CODE_TIMEOUT"
+#: Wall-clock seconds per second of the limit before code that does not compute is stopped.
+WALL_FACTOR = 10.0
 
 _active = threading.local()
 
 
 class _TimeUp(BaseException):
-    """Raised into user code when its time is up; not an Exception, which user code may catch."""
+    """Raised into user code when its time is up; not an Exception, which user code may catch.
+
+    ``blocked`` tells the wall-clock timer (code waiting) from the CPU one (code computing).
+    """
+
+    def __init__(self, blocked: bool) -> None:
+        super().__init__()
+        self.blocked = blocked
 
 
 def time_limit() -> float:
@@ -70,20 +82,29 @@ def running_user_code(what: str, location: SourceLocation | None = None) -> Iter
         and hasattr(signal, "setitimer")
     )
 
-    def time_up(signum: int, frame: FrameType | None) -> None:
-        raise _TimeUp
+    def computed_too_long(signum: int, frame: FrameType | None) -> None:
+        raise _TimeUp(blocked=False)
 
-    previous = signal.signal(signal.SIGALRM, time_up) if own_timer else None
+    def waited_too_long(signum: int, frame: FrameType | None) -> None:
+        raise _TimeUp(blocked=True)
+
+    previous: list[signal._HANDLER] = []
     if own_timer:
+        previous = [
+            signal.signal(signal.SIGPROF, computed_too_long),
+            signal.signal(signal.SIGALRM, waited_too_long),
+        ]
         _active.timing = True
-        signal.setitimer(signal.ITIMER_REAL, limit)
+        signal.setitimer(signal.ITIMER_PROF, limit)
+        signal.setitimer(signal.ITIMER_REAL, limit * WALL_FACTOR)
     try:
         yield
-    except _TimeUp:
+    except _TimeUp as up:
         if not own_timer:
             raise
+        waited = f" ({limit * WALL_FACTOR:g} s in all, most of it waiting)" if up.blocked else ""
         raise RfcError(
-            f"{what} did not finish within {limit:g} s",
+            f"{what} did not finish within {limit:g} s{waited}",
             location=location,
             hint=f"look for an endless loop or a blocking call; set {TIME_LIMIT_ENV}=SECONDS "
             "to allow longer",
@@ -96,6 +117,8 @@ def running_user_code(what: str, location: SourceLocation | None = None) -> Iter
         ) from None
     finally:
         if own_timer:
+            signal.setitimer(signal.ITIMER_PROF, 0)
             signal.setitimer(signal.ITIMER_REAL, 0)
-            signal.signal(signal.SIGALRM, previous)
+            signal.signal(signal.SIGPROF, previous[0])
+            signal.signal(signal.SIGALRM, previous[1])
             _active.timing = False

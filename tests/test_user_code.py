@@ -10,6 +10,7 @@ from pathlib import Path
 
 import pytest
 
+from rfc import user_code
 from rfc.errors import RfcError
 from rfc.messages.rosbags_adapter import message_types, write_bag
 from rfc.user_code import TIME_LIMIT_ENV, running_user_code
@@ -122,3 +123,23 @@ def test_the_limit_is_lifted_after_the_code_ran(monkeypatch):
         running_user_code("slow code"),
     ):
         time.sleep(5)
+
+
+def test_the_limit_counts_computing_and_stops_waiting_later(monkeypatch):
+    monkeypatch.setenv(TIME_LIMIT_ENV, "0.2")
+    monkeypatch.setattr(user_code, "WALL_FACTOR", 100.0)  # the CPU timer first, however busy
+    with running_user_code("waiting code"):
+        time.sleep(0.5)  # waiting is not computing
+    with pytest.raises(RfcError, match=r"busy code did not finish within 0\.2 s\n"):
+        spin("busy code")
+    monkeypatch.setattr(user_code, "WALL_FACTOR", 5.0)
+    waited = r"blocked code .* 0\.2 s \(1 s in all, most of it waiting\)"
+    with pytest.raises(RfcError, match=waited), running_user_code("blocked code"):
+        time.sleep(5)
+
+
+def spin(what: str) -> None:
+    """Compute forever under the limit."""
+    with running_user_code(what):
+        while True:
+            pass

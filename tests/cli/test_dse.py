@@ -123,6 +123,20 @@ def test_without_figures_the_sweep_writes_its_tables_and_a_report_without_images
     assert f"wrote tables and report.html into {out}" in result.stderr
 
 
+@pytest.mark.slow
+def test_a_cold_first_run_says_it_compiles_the_kernels_and_the_next_run_loads_them(tmp_path):
+    env = {"NUMBA_CACHE_DIR": str(tmp_path / "numba")}
+    args = ("dse", "--n", "4", "--dataset", "cc1", "--replicates", "2", "--no-synth", "--json")
+    cold = run_rfc(*args, "-o", tmp_path / "cold", env=env)
+    warm = run_rfc(*args, "-o", tmp_path / "warm", env=env)
+    assert cold.returncode == warm.returncode == 0, cold.stderr + warm.stderr
+    assert "compiling the DSE kernels with numba" in cold.stderr
+    assert "compiling" not in warm.stderr
+    assert any((tmp_path / "numba").rglob("*.nbi"))
+    documents = [json.loads(run.stdout) for run in (cold, warm)]
+    assert documents[0]["points"] == documents[1]["points"]
+
+
 def test_a_directory_rfc_did_not_write_is_kept(tmp_path):
     (tmp_path / "mine.txt").write_text("keep me")
     result = run_rfc("dse", "--n", "2", "--dataset", "cc1", "--replicates", "2", "--no-synth",

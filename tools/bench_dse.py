@@ -8,8 +8,9 @@ Measures, each apart:
   best of `--repeat` runs, as a ratio to SimSo's 31 s (target: at least 100x);
 * the SimSo point end to end as a user runs it: `rfc dse --n 256 --dataset cc4 --replicates 2
   --no-synth` in a new process (start, kernels from the cache, the six schedulers and Figure 14's
-  combinations, tables, figures, report), on one process and on `--jobs`, as a ratio to SimSo's
-  31 s per run times the six schedulers' two replicates (372 s; target: at least 100x);
+  combinations, tables, report; figures are drawn only with `--figures`), on one process and on
+  `--jobs`, as a ratio to SimSo's 31 s per run times the six schedulers' two replicates (372 s;
+  target: at least 100x);
 * the full paper sweep: six schedulers x N in 2..256 on the large dataset (200 replicates of
   10,000 cycles) and the four corner cases (10 replicates of 50,000 cycles), plus Figure 14's
   combinations, on `--jobs` processes (target: 60 s on 2 cores); simulation only, LUT/FF come
@@ -166,7 +167,7 @@ def full_sweep(jobs: int, output: Path | None, resources: Path | None) -> None:
         from rfc.dse.output import write_sweep
 
         measured = _resources(resources) if resources else ()
-        write_sweep(SweepResult(plan, result.points, measured), (), output)
+        write_sweep(SweepResult(plan, result.points, measured), (), output, figures=True)
         print(f"wrote the sweep's tables, figures and report into {output}")
 
 

@@ -1,9 +1,10 @@
 """`rfc dse [SPEC]`: the paper's scheduler evaluation, or a scheduler recommended for a project.
 
 Without SPEC it sweeps the schedulers over the datasets (docs/dse.md), prints the metrics and
-writes tables, figures and an HTML report into DIR; `--verify-hdl` re-runs sampled points on
-the generated hardware in GHDL. With SPEC it ranks the candidate schedulers for the project's
-publishers by the objective and prints the recommendation with its reasons.
+writes tables and an HTML report into DIR (the paper's figures too with `--figures`);
+`--verify-hdl` re-runs sampled points on the generated hardware in GHDL. With SPEC it ranks the
+candidate schedulers for the project's publishers by the objective and prints the
+recommendation with its reasons.
 """
 
 from __future__ import annotations
@@ -110,6 +111,14 @@ def dse(
     no_synth: Annotated[
         bool, typer.Option("--no-synth", help="Skip LUT/FF (Figure 6, Table 3).")
     ] = False,
+    figures: Annotated[
+        bool,
+        typer.Option(
+            "--figures",
+            help="Also draw Figures 6-14 and Table 3 (PNG, SVG) into DIR and show them in "
+            "report.html (takes longer than a small sweep's simulation).",
+        ),
+    ] = False,
     objective: Annotated[
         str | None,
         typer.Option(
@@ -137,7 +146,7 @@ def dse(
         _sweep_only(
             {"--n": n, "--dataset": dataset, "--replicates": replicates,
              "--verify-hdl": verify_hdl, "--no-synth": no_synth, "--seed": seed,
-             "--cluster": cluster}
+             "--cluster": cluster, "--figures": figures}
         )  # fmt: skip
         _project(spec, objective, output, as_json, horizon)
         return
@@ -153,7 +162,7 @@ def dse(
         )
     _sweep(
         _sizes(n), dataset, replicates, workers, output or Path("dse"), as_json, verify_hdl,
-        not no_synth, seed or 0, cluster,
+        not no_synth, seed or 0, cluster, figures,
     )  # fmt: skip
 
 
@@ -168,6 +177,7 @@ def _sweep(
     synthesis: bool,
     seed: int,
     cluster: str | None,
+    figures: bool,
 ) -> None:
     from rfc.dse.datasets import DATASETS
     from rfc.dse.datasets import dataset as find_dataset
@@ -178,7 +188,7 @@ def _sweep(
     names = (find_dataset(dataset).name,) if dataset else tuple(DATASETS)
     plan = Plan(datasets=names, sizes=sizes, replicates=replicates, seed=seed)
     console = Console(stderr=True, highlight=False)
-    _compile_kernels()
+    _load_kernels()
     with _progress(console) as progress:
         task = progress.add_task("simulating", total=1.0)
         result = run_sweep(
@@ -199,7 +209,7 @@ def _sweep(
 
             progress.add_task("verifying in GHDL", total=None)
             checks = verify_hdl(result, jobs)
-    write_sweep(result, checks, output, jobs)
+    write_sweep(result, checks, output, jobs, figures)
     report: dict[str, Any] = {**document(result), "output": str(output)}
     if verify:
         report["verify_hdl"] = [check.as_dict() for check in checks]
@@ -207,7 +217,8 @@ def _sweep(
         print(json.dumps(report, indent=1))
     else:
         _print_sweep(result, Console(highlight=False))
-        print(f"wrote tables, figures and report.html into {output}", file=sys.stderr)
+        written = "tables, figures and report.html" if figures else "tables and report.html"
+        print(f"wrote {written} into {output}", file=sys.stderr)
     if result.failures:
         raise RfcError(
             f"{len(result.failures)} of the sweep's jobs failed on the cluster, the other "
@@ -226,9 +237,9 @@ def _sweep(
         print(f"--verify-hdl: {len(checks)} points equal in GHDL", file=sys.stderr)
 
 
-def _compile_kernels() -> None:
-    """Compile the kernel before the sweep when numba's cache lacks it, saying so (once)."""
-    from rfc.dse.engine import compile_kernels
+def _load_kernels() -> None:
+    """Load the kernels before the sweep, compiling them first (saying so) if numba lacks them."""
+    from rfc.dse.engine import load_kernels
     from rfc.dse.kernel import compiled
 
     if not compiled():
@@ -237,7 +248,7 @@ def _compile_kernels() -> None:
             "its cache)",
             file=sys.stderr,
         )
-        compile_kernels()
+    load_kernels()
 
 
 def _progress(console: Console) -> Progress:
@@ -293,7 +304,7 @@ def _project(
     design = compile_spec(str(spec), pipeline=MODEL_PIPELINE)
     assert design.infrastructure is not None  # the model pipeline derives it
     traffic = project_traffic(design.project.name, design.infrastructure.scheduler.inputs, horizon)
-    _compile_kernels()
+    _load_kernels()
     console = Console(stderr=True, highlight=False)
     with Progress(
         TextColumn("simulating candidates"),

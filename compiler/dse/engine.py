@@ -155,8 +155,12 @@ def run_tasks(
     return {key: np.concatenate([parts[i] for i in sorted(parts)]) for key, parts in rows.items()}
 
 
-def compile_kernels() -> None:
-    """Compile the kernel once, on one tiny replicate, into numba's cache (workers then load it)."""
+def load_kernels() -> None:
+    """Compile the kernels into numba's cache, or load them from it, on one tiny replicate.
+
+    Called before the sweep: worker processes forked afterwards inherit them loaded instead of
+    each loading them again (which costs more than a small sweep's simulation).
+    """
     from rfc.dse.datasets import DATASETS, draw
 
     simulate("LRU", draw(DATASETS["cc1"], 2, 1), 10)

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import json
 import os
+from typing import Any
 
 import cocotb
 from cocotb.clock import Clock
@@ -20,11 +21,11 @@ from rfc.dse.trace import one_hot_index
 
 
 @cocotb.test()
-async def replay_trace(dut) -> None:
+async def replay_trace(dut: Any) -> None:  # its signals are known when GHDL elaborates it
     """Drive the trace's inputs cycle by cycle; the grant must equal the recorded one."""
     with open(os.environ["SCHED_TRACE"]) as source:
         trace = json.load(source)
-    cocotb.start_soon(Clock(dut.clk, 10, unit="ns").start())
+    Clock(dut.clk, 10, unit="ns").start()  # cocotb 2: the clock runs its own task
     dut.rst.value = 1
     dut.request.value = 0
     dut.last.value = 0

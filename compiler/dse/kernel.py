@@ -18,9 +18,24 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+import numpy.typing as npt
 from numba import njit
 
-from rfc.lib.schedulers.model.kernels import reset_state, tree_cycle, work_arrays
+from rfc.lib.schedulers.model.jit import kernel
+from rfc.lib.schedulers.model.kernels import (
+    BoolArray,
+    IntArray,
+    Scratch,
+    State,
+    Structure,
+    Work,
+    reset_state,
+    tree_cycle,
+    work_arrays,
+)
+from rfc.lib.schedulers.model.tree import SchedulerTree
+
+FloatArray = npt.NDArray[np.float64]
 
 #: Columns of the per-replicate metrics row, in order.
 METRICS = (
@@ -38,7 +53,18 @@ COLUMN = {name: index for index, name in enumerate(METRICS)}
 
 
 @njit(cache=True)
-def simulate(tree, load, node_deadline, transfer, gap, deadline, cycles, out, work, scratch):
+def simulate(
+    tree: Structure,
+    load: IntArray,
+    node_deadline: IntArray,
+    transfer: IntArray,
+    gap: IntArray,
+    deadline: IntArray,
+    cycles: int,
+    out: FloatArray,
+    work: Work,
+    scratch: Scratch,
+) -> None:
     """Simulate every replicate for `cycles` cycles and write its metrics row into `out`.
 
     Args:
@@ -81,23 +107,23 @@ def simulate(tree, load, node_deadline, transfer, gap, deadline, cycles, out, wo
         )
 
 
-@njit(cache=True, _nrt=False)
+@kernel
 def _replicate(
-    tree,
-    load,
-    node_deadline,
-    transfer,
-    gap,
-    deadline,
-    cycles,
-    out,
-    state,
-    signals,
-    counters,
-    wheel,
-    work,
-    scratch,
-):
+    tree: Structure,
+    load: IntArray,
+    node_deadline: IntArray,
+    transfer: IntArray,
+    gap: IntArray,
+    deadline: IntArray,
+    cycles: int,
+    out: FloatArray,
+    state: State,
+    signals: tuple[BoolArray, BoolArray],
+    counters: IntArray,
+    wheel: IntArray,
+    work: Work,
+    scratch: Scratch,
+) -> None:
     """One replicate of `simulate` (no allocation here: the arrays are its scratch)."""
     owner, computing, timer, seen, key, registered = state
     request, last = signals
@@ -180,7 +206,9 @@ def _replicate(
     out[8] = (late + pending_late) / due if due else 0.0
 
 
-def run_replicates(tree, transfer, gap, deadline, cycles: int) -> np.ndarray:
+def run_replicates(
+    tree: SchedulerTree, transfer: IntArray, gap: IntArray, deadline: IntArray, cycles: int
+) -> FloatArray:
     """float[R, len(METRICS)]: the metrics of each replicate (see `simulate`)."""
     work, scratch = work_arrays(len(tree.algorithm), len(tree.child_of), int(tree.inputs.max()))
     out = np.empty((transfer.shape[0], len(METRICS)), dtype=np.float64)
@@ -208,4 +236,4 @@ def compiled() -> bool:
     if stats is None:
         return True
     module = simulate.__module__.rpartition(".")[2]
-    return any(Path(stats.cache_path).glob(f"{module}.{simulate.__name__}-*.nbi"))
+    return any(Path(stats.cache_path).glob(f"{module}.{simulate.py_func.__name__}-*.nbi"))

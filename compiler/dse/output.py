@@ -1,8 +1,9 @@
 """Writing DSE results into their directory at once (or not at all), and the project document.
 
 A sweep writes ``results.json`` (the `--json` document), ``results.csv``, ``resources.csv``,
-``table3.md``, ``figure6…14`` and ``table3`` as PNG and SVG, ``report.html`` and, with
-`--verify-hdl`, ``verify.json``. A project writes ``recommendation.json``.
+``table3.md``, ``report.html``, with `--figures` ``figure6…14`` and ``table3`` as PNG and SVG
+(drawing them takes longer than a small sweep's simulation) and with `--verify-hdl`
+``verify.json``. A project writes ``recommendation.json``.
 """
 
 from __future__ import annotations
@@ -24,10 +25,21 @@ if TYPE_CHECKING:  # the GHDL verification and the project's ranking load only w
 
 
 def write_sweep(
-    result: SweepResult, checks: Sequence[Check], directory: Path, jobs: int = 1
+    result: SweepResult,
+    checks: Sequence[Check],
+    directory: Path,
+    jobs: int = 1,
+    figures: bool = False,
 ) -> None:
-    """Replace `directory` with the sweep's tables, figures (on `jobs` processes) and report."""
-    from rfc.dse.plots import write_figures
+    """Replace `directory` with the sweep's tables and report, and its figures if asked.
+
+    Args:
+        result: The sweep.
+        checks: The `--verify-hdl` checks (none: no ``verify.json``).
+        directory: Replaced as a whole, or left as it was on an error.
+        jobs: Processes drawing the figures.
+        figures: Also draw the figures, which the report then shows.
+    """
     from rfc.dse.report import render
 
     def fill(staging: Path) -> None:
@@ -36,8 +48,12 @@ def write_sweep(
         if result.resources:
             (staging / "resources.csv").write_text(resources_csv(result))
             (staging / "table3.md").write_text(table3_markdown(result))
-        figures = write_figures(result, staging, jobs)
-        (staging / "report.html").write_text(render(result, figures), encoding="utf-8")
+        drawn: list[str] = []
+        if figures:
+            from rfc.dse.plots import write_figures  # matplotlib is imported only then
+
+            drawn = write_figures(result, staging, jobs)
+        (staging / "report.html").write_text(render(result, drawn), encoding="utf-8")
         if checks:
             verified = [check.as_dict() for check in checks]
             (staging / "verify.json").write_text(json.dumps(verified, indent=1) + "\n")

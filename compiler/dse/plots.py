@@ -22,23 +22,10 @@ import matplotlib.pyplot as plt
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
+from rfc.dse.captions import CAPTIONS
 from rfc.dse.sweep import ALGORITHMS, COMBINATIONS, SweepResult
 from rfc.dse.tables import table3
 
-#: What each figure shows (file name → caption).
-CAPTIONS = {
-    "figure6": "Figure 6: schedulers' resource utilization (LUT, FF) versus N",
-    "figure7": "Figure 7: preemptions per accelerator (per completed transaction)",
-    "figure8": "Figure 8: accelerators that completed at least one transaction (full) or "
-    "only got the grant (hatched)",
-    "figure9": "Figure 9: communication channel utilization",
-    "figure10": "Figure 10: (a) average response time, (b) average lateness",
-    "figure11": "Figure 11: corner cases, preemptions per accelerator",
-    "figure12": "Figure 12: corner cases, average response time",
-    "figure13": "Figure 13: corner cases, average lateness",
-    "figure14": "Figure 14: combined schedulers, accelerators granted and completed",
-    "table3": "Table 3: resource-latency EDF trade-off (ROEDF / LOEDF)",
-}
 _MARKERS = dict(zip(ALGORITHMS, "osD^vx", strict=True))
 
 

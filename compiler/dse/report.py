@@ -9,9 +9,9 @@ from __future__ import annotations
 import html
 import math
 
+from rfc.dse.captions import CAPTIONS
 from rfc.dse.datasets import dataset
 from rfc.dse.kernel import METRICS
-from rfc.dse.plots import CAPTIONS
 from rfc.dse.sweep import SweepResult
 from rfc.dse.tables import table3
 

@@ -48,8 +48,9 @@ blocks:
 def test_the_issue_command_prints_all_six_and_writes_figures_and_report(tmp_path):
     out = tmp_path / "OUT"
     result = run_rfc(
-        "dse", "--n", "8,16", "--dataset", "large", "--replicates", "4", "-o", out, "--json"
-    )
+        "dse", "--n", "8,16", "--dataset", "large", "--replicates", "4", "-o", out, "--json",
+        "--figures",
+    )  # fmt: skip
     assert result.returncode == 0, result.stderr
     report = json.loads(result.stdout)
     points = {(p["scheduler"], p["n"]): p for p in report["points"]}
@@ -109,6 +110,33 @@ def test_verify_hdl_passes_on_the_sampled_points_and_a_rerun_replaces_its_files(
     assert (out / "report.html").exists()
 
 
+def test_without_figures_the_sweep_writes_its_tables_and_a_report_without_images(tmp_path):
+    out = tmp_path / "out"
+    result = run_rfc("dse", "--n", "2", "--dataset", "cc1", "--replicates", "2", "--no-synth",
+                     "-o", out)  # fmt: skip
+    assert result.returncode == 0, result.stderr
+    written = sorted(p.name for p in out.iterdir() if not p.name.startswith("."))
+    assert written == ["report.html", "results.csv", "results.json"]
+    page = (out / "report.html").read_text()
+    assert "<img" not in page
+    assert "<h2>Dataset cc1</h2>" in page
+    assert f"wrote tables and report.html into {out}" in result.stderr
+
+
+@pytest.mark.slow
+def test_a_cold_first_run_says_it_compiles_the_kernels_and_the_next_run_loads_them(tmp_path):
+    env = {"NUMBA_CACHE_DIR": str(tmp_path / "numba")}
+    args = ("dse", "--n", "4", "--dataset", "cc1", "--replicates", "2", "--no-synth", "--json")
+    cold = run_rfc(*args, "-o", tmp_path / "cold", env=env)
+    warm = run_rfc(*args, "-o", tmp_path / "warm", env=env)
+    assert cold.returncode == warm.returncode == 0, cold.stderr + warm.stderr
+    assert "compiling the DSE kernels with numba" in cold.stderr
+    assert "compiling" not in warm.stderr
+    assert any((tmp_path / "numba").rglob("*.nbi"))
+    documents = [json.loads(run.stdout) for run in (cold, warm)]
+    assert documents[0]["points"] == documents[1]["points"]
+
+
 def test_a_directory_rfc_did_not_write_is_kept(tmp_path):
     (tmp_path / "mine.txt").write_text("keep me")
     result = run_rfc("dse", "--n", "2", "--dataset", "cc1", "--replicates", "2", "--no-synth",
@@ -127,6 +155,7 @@ def test_a_directory_rfc_did_not_write_is_kept(tmp_path):
         (("--objective", "lut"), "--objective ranks a project's schedulers; give the project's"),
         (("--objective", "fastest", HUB), "unknown objective criterion 'fastest'"),
         (("--n", "8", "--verify-hdl", HUB), "--n, --verify-hdl apply to the paper's sweep"),
+        (("--figures", HUB), "--figures applies to the paper's sweep"),
         ((MULTI_TYPE,), "publishers Image_pub, Scan_pub, Twist_pub of project 'MultiType' have"),
         (("missing.yaml",), "spec 'missing.yaml' does not exist"),
     ],

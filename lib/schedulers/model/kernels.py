@@ -19,16 +19,39 @@ results are cached on disk so that a new process does not compile again.
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+import numpy.typing as npt
+
+from rfc.lib.schedulers.model.jit import kernel
 
 #: Algorithm codes of the compiled kernels (the order of `rfc.lib.schedulers.spec.Algorithm`).
 LRU, NPFP, PFP, ROEDF, LOEDF, LST = range(6)
 #: A key larger than any counter (counters are at most 48 bits wide).
 _NONE = 1 << 62
 
+BoolArray = npt.NDArray[np.bool_]
+IntArray = npt.NDArray[np.int64]
+#: (algorithm, inputs, base, leaf_start, parent, slot, child_of, bits) of a tree.
+Structure = tuple[IntArray, ...]
+#: (owner, computing, timer, seen, key, registered): one replicate's, or a batch's (axis 0: R).
+State = tuple[IntArray, BoolArray, IntArray, BoolArray, IntArray, BoolArray]
+#: (node_request, node_last, offer, offer_leaf, node_grant): `tree_cycle`'s scratch arrays.
+Work = tuple[BoolArray, BoolArray, IntArray, IntArray, IntArray]
+#: (valid, key, index): the scratch arrays of ROEDF's comparison tree.
+Scratch = tuple[BoolArray, IntArray, IntArray]
 
-@njit(cache=True, _nrt=False)
-def reset_state(algorithm, inputs, base, owner, computing, timer, seen, key, registered):
+
+@kernel
+def reset_state(
+    algorithm: IntArray,
+    inputs: IntArray,
+    base: IntArray,
+    owner: IntArray,
+    computing: BoolArray,
+    timer: IntArray,
+    seen: BoolArray,
+    key: IntArray,
+    registered: BoolArray,
+) -> None:
     """Synchronous reset of one replicate: no holder, LRU ranks = indices, counters at 0."""
     for k in range(algorithm.shape[0]):
         owner[k] = -1
@@ -40,8 +63,18 @@ def reset_state(algorithm, inputs, base, owner, computing, timer, seen, key, reg
             key[base[k] + i] = i if algorithm[k] == LRU else 0
 
 
-@njit(cache=True, _nrt=False)
-def _least_modular(n, request, at, done, key, base, holder, bits, scratch):
+@kernel
+def _least_modular(
+    n: int,
+    request: BoolArray,
+    at: int,
+    done: int,
+    key: IntArray,
+    base: int,
+    holder: int,
+    bits: int,
+    scratch: Scratch,
+) -> int:
     """ROEDF's Set Grant: the hardware's balanced tree on a circle of 2^(bits+1) extended keys.
 
     Key i is ``(key[i] << 1) | 1``, minus one for the holder (the holder wins ties); a right
@@ -72,11 +105,24 @@ def _least_modular(n, request, at, done, key, base, holder, bits, scratch):
             else:
                 tkey[j] = tkey[left]
                 index[j] = index[left]
-    return index[0] if valid[0] else -1
+    least: int = index[0] if valid[0] else -1
+    return least
 
 
-@njit(cache=True, _nrt=False)
-def _clock_countdown(keep_moving, n, request, at, grant, done, load, base, holder, seen, key):
+@kernel
+def _clock_countdown(
+    keep_moving: bool,
+    n: int,
+    request: BoolArray,
+    at: int,
+    grant: int,
+    done: int,
+    load: IntArray,
+    base: int,
+    holder: int,
+    seen: BoolArray,
+    key: IntArray,
+) -> int:
     """LOEDF/LST edge: load arrivals, count pending ones down, pick the least next value.
 
     Set Grant compares the counters' *next* values (merged Compute Condition), lowest index on
@@ -106,16 +152,16 @@ def _clock_countdown(keep_moving, n, request, at, grant, done, load, base, holde
     return -1
 
 
-@njit(cache=True, _nrt=False)
-def _first(n, request, at, done):
+@kernel
+def _first(n: int, request: BoolArray, at: int, done: int) -> int:
     for i in range(n):
         if request[at + i] and i != done:
             return i
     return -1
 
 
-@njit(cache=True, _nrt=False)
-def _least_rank(n, request, at, done, rank, base):
+@kernel
+def _least_rank(n: int, request: BoolArray, at: int, done: int, rank: IntArray, base: int) -> int:
     best = -1
     least = 0
     for i in range(n):
@@ -125,8 +171,19 @@ def _least_rank(n, request, at, done, rank, base):
     return best
 
 
-@njit(cache=True, _nrt=False)
-def clock_node(k, tree, request, last, at, grant, load, deadline, state, scratch):
+@kernel
+def clock_node(
+    k: int,
+    tree: Structure,
+    request: BoolArray,
+    last: BoolArray,
+    at: int,
+    grant: int,
+    load: IntArray,
+    deadline: IntArray,
+    state: State,
+    scratch: Scratch,
+) -> None:
     """One rising edge of node k, given its inputs' request/last and this cycle's grant.
 
     Args:
@@ -159,8 +216,10 @@ def clock_node(k, tree, request, last, at, grant, load, deadline, state, scratch
         owner[k] = _reselect(algorithm == LRU, n, base, request, at, done, key)
 
 
-@njit(cache=True, _nrt=False)
-def _reselect(lru, n, base, request, at, done, key):
+@kernel
+def _reselect(
+    lru: bool, n: int, base: int, request: BoolArray, at: int, done: int, key: IntArray
+) -> int:
     """Set Grant of LRU and fixed priority; LRU moves the new holder to the bottom."""
     if not lru:
         return _first(n, request, at, done)
@@ -174,8 +233,21 @@ def _reselect(lru, n, base, request, at, done, key):
     return chosen
 
 
-@njit(cache=True, _nrt=False)
-def _clock_roedf(k, n, base, bits, request, at, grant, done, held, deadline, state, scratch):
+@kernel
+def _clock_roedf(
+    k: int,
+    n: int,
+    base: int,
+    bits: int,
+    request: BoolArray,
+    at: int,
+    grant: int,
+    done: int,
+    held: int,
+    deadline: IntArray,
+    state: State,
+    scratch: Scratch,
+) -> int:
     """ROEDF edge: register one waiting request per cycle (pausing), then Set Grant."""
     computing, timer, key, registered = state[1], state[2], state[4], state[5]
     loading = -1
@@ -198,10 +270,18 @@ def _clock_roedf(k, n, base, bits, request, at, grant, done, held, deadline, sta
     return -1 if pause and done >= 0 else chosen
 
 
-@njit(cache=True, _nrt=False)
-def _offer(k, tree, owner, computing, signals, at, offer_leaf):
+@kernel
+def _offer(
+    k: int,
+    tree: Structure,
+    owner: IntArray,
+    computing: BoolArray,
+    signals: BoolArray,
+    at: int,
+    offer_leaf: IntArray,
+) -> int:
     """Node k's offer (its holder when that input requests, outside a pause) and its leaf."""
-    held = owner[k]
+    held: int = owner[k]
     if held < 0 or computing[k] or not signals[at + held]:
         offer_leaf[k] = -1
         return -1
@@ -210,8 +290,18 @@ def _offer(k, tree, owner, computing, signals, at, offer_leaf):
     return held
 
 
-@njit(cache=True, _nrt=False)
-def tree_cycle(tree, load, deadline, state, request, last, ready, work, scratch):
+@kernel
+def tree_cycle(
+    tree: Structure,
+    load: IntArray,
+    deadline: IntArray,
+    state: State,
+    request: BoolArray,
+    last: BoolArray,
+    ready: bool,
+    work: Work,
+    scratch: Scratch,
+) -> int:
     """One clock cycle of a scheduler tree on one replicate; returns this cycle's grant.
 
     Bottom-up, every node offers the channel to its holder when that input requests (outside a
@@ -276,11 +366,12 @@ def tree_cycle(tree, load, deadline, state, request, last, ready, work, scratch)
                 state,
                 scratch,
             )
-    return offer_leaf[0] if node_grant[0] >= 0 else -1
+    granted_leaf: int = offer_leaf[0] if node_grant[0] >= 0 else -1
+    return granted_leaf
 
 
-@njit(cache=True, _nrt=False)
-def tree_offer(tree, state, request, work):
+@kernel
+def tree_offer(tree: Structure, state: State, request: BoolArray, work: Work) -> int:
     """The input the scheduler offers the channel this cycle (before `ready`), without a clock."""
     owner, computing = state[0], state[1]
     node_request, offer_leaf = work[0], work[3]
@@ -293,10 +384,11 @@ def tree_offer(tree, state, request, work):
         )
         if parent[k] >= 0:
             node_request[base[parent[k]] + slot[k]] = offered >= 0
-    return offer_leaf[0]
+    offered_leaf: int = offer_leaf[0]
+    return offered_leaf
 
 
-def work_arrays(nodes: int, flat: int, widest: int) -> tuple[tuple, tuple]:
+def work_arrays(nodes: int, flat: int, widest: int) -> tuple[Work, Scratch]:
     """Scratch arrays for `tree_cycle` and `tree_offer` of a tree of this size."""
     work = (
         np.zeros(flat, dtype=np.bool_),
@@ -316,8 +408,19 @@ def work_arrays(nodes: int, flat: int, widest: int) -> tuple[tuple, tuple]:
     return work, scratch
 
 
-@njit(cache=True, _nrt=False)
-def step_batch(tree, load, deadline, state, request, last, ready, grant, work, scratch):
+@kernel
+def step_batch(
+    tree: Structure,
+    load: IntArray,
+    deadline: IntArray,
+    state: State,
+    request: BoolArray,
+    last: BoolArray,
+    ready: BoolArray,
+    grant: IntArray,
+    work: Work,
+    scratch: Scratch,
+) -> None:
     """`tree_cycle` on every replicate r of a batch (state arrays have a leading R axis)."""
     owner, computing, timer, seen, key, registered = state
     for r in range(request.shape[0]):
@@ -334,8 +437,10 @@ def step_batch(tree, load, deadline, state, request, last, ready, grant, work, s
         )
 
 
-@njit(cache=True, _nrt=False)
-def offer_batch(tree, state, request, offered, work):
+@kernel
+def offer_batch(
+    tree: Structure, state: State, request: BoolArray, offered: IntArray, work: Work
+) -> None:
     """`tree_offer` on every replicate of a batch."""
     owner, computing, timer, seen, key, registered = state
     for r in range(request.shape[0]):
@@ -347,8 +452,8 @@ def offer_batch(tree, state, request, offered, work):
         )
 
 
-@njit(cache=True, _nrt=False)
-def reset_batch(tree, state):
+@kernel
+def reset_batch(tree: Structure, state: State) -> None:
     """`reset_state` on every replicate of a batch."""
     algorithm, inputs, base = tree[:3]
     owner, computing, timer, seen, key, registered = state

@@ -41,7 +41,11 @@ class Publishers:
         self._rng = rng or np.random.default_rng(0)
         self._rows = np.arange(self.batch)
         if release is None:
-            release = np.zeros_like(self.transfer) if gap is not None else self._random_gaps()
+            release = (
+                np.zeros(self.transfer.shape, dtype=np.int64)
+                if gap is not None
+                else self._random_gaps()
+            )
         self.remaining = np.zeros_like(self.transfer)
         self.idle = np.asarray(release, dtype=np.int32).copy()
         self._start_due()
@@ -60,7 +64,8 @@ class Publishers:
     @property
     def last(self) -> BoolArray:
         """bool[R, N]: `tlast`, high on the last beat of a message."""
-        return self.remaining == 1
+        on_last: BoolArray = self.remaining == 1  # numpy types == as Any
+        return on_last
 
     def advance(self, grant: IntArray) -> BoolArray:
         """End the cycle: the granted input moves one beat; idle inputs count their gap down.

@@ -1,7 +1,8 @@
 """`rfc dse [SPEC]`: the paper's scheduler evaluation, or a scheduler recommended for a project.
 
 Without SPEC it sweeps the schedulers over the datasets (docs/dse.md), prints the metrics and
-writes tables and an HTML report into DIR (the paper's figures too with `--figures`);
+writes tables, an HTML report and (over more than one N, or with `--figures`) the paper's figures
+into DIR;
 `--verify-hdl` re-runs sampled points on the generated hardware in GHDL. With SPEC it ranks the
 candidate schedulers for the project's publishers by the objective and prints the
 recommendation with its reasons.
@@ -112,13 +113,14 @@ def dse(
         bool, typer.Option("--no-synth", help="Skip LUT/FF (Figure 6, Table 3).")
     ] = False,
     figures: Annotated[
-        bool,
+        bool | None,
         typer.Option(
-            "--figures",
-            help="Also draw Figures 6-14 and Table 3 (PNG, SVG) into DIR and show them in "
-            "report.html (takes longer than a small sweep's simulation).",
+            "--figures/--no-figures",
+            help="Draw Figures 6-14 and Table 3 (PNG, SVG) into DIR and report.html; by "
+            "default when the sweep has more than one N (the figures plot against N).",
+            show_default=False,
         ),
-    ] = False,
+    ] = None,
     objective: Annotated[
         str | None,
         typer.Option(
@@ -162,7 +164,7 @@ def dse(
         )
     _sweep(
         _sizes(n), dataset, replicates, workers, output or Path("dse"), as_json, verify_hdl,
-        not no_synth, seed or 0, cluster, figures,
+        not no_synth, seed or 0, cluster, len(_sizes(n)) > 1 if figures is None else figures,
     )  # fmt: skip
 
 

@@ -48,8 +48,7 @@ blocks:
 def test_the_issue_command_prints_all_six_and_writes_figures_and_report(tmp_path):
     out = tmp_path / "OUT"
     result = run_rfc(
-        "dse", "--n", "8,16", "--dataset", "large", "--replicates", "4", "-o", out, "--json",
-        "--figures",
+        "dse", "--n", "8,16", "--dataset", "large", "--replicates", "4", "-o", out, "--json"
     )  # fmt: skip
     assert result.returncode == 0, result.stderr
     report = json.loads(result.stdout)
@@ -110,9 +109,10 @@ def test_verify_hdl_passes_on_the_sampled_points_and_a_rerun_replaces_its_files(
     assert (out / "report.html").exists()
 
 
-def test_without_figures_the_sweep_writes_its_tables_and_a_report_without_images(tmp_path):
+@pytest.mark.parametrize("sizes", [("--n", "2"), ("--n", "2,4", "--no-figures")])
+def test_without_figures_the_sweep_writes_its_tables_and_a_report_without_images(tmp_path, sizes):
     out = tmp_path / "out"
-    result = run_rfc("dse", "--n", "2", "--dataset", "cc1", "--replicates", "2", "--no-synth",
+    result = run_rfc("dse", *sizes, "--dataset", "cc1", "--replicates", "2", "--no-synth",
                      "-o", out)  # fmt: skip
     assert result.returncode == 0, result.stderr
     written = sorted(p.name for p in out.iterdir() if not p.name.startswith("."))

@@ -94,7 +94,7 @@ def stream_outputs(plan: Plan, ports: dict[str, Any], o_data: Any, o_keep: Any, 
     blocks = []
     readies = []
     for index, at in enumerate(tables(plan).streams):
-        name = plan.steps[at].stream
+        name = plan.payload(at).stream
         blocks.append(
             stream_port(
                 o_data,

@@ -142,8 +142,8 @@ def rfc_publisher(plan: Plan, held: dict[str, Any] | None = None, **ports: Any) 
     skid = []
     pending = Constant(bool(0))  # a beat of the streamed-through stream waits at the port
     through_valid = Constant(bool(0))  # a beat of it waits at the port or in the skid
-    if streaming:
-        ends = [f"{plan.steps[through].stream}_{end}" for end in ("tdata", "tvalid", "tready")]
+    if through is not None:
+        ends = [f"{plan.payload(through).stream}_{end}" for end in ("tdata", "tvalid", "tready")]
         outer = [ports[name] for name in ends]
         inner = [Signal(intbv(0)[len(outer[0]) :]), Signal(bool(0)), Signal(bool(0))]
         pending, through_valid = outer[1], Signal(bool(0))
@@ -172,10 +172,10 @@ def rfc_publisher(plan: Plan, held: dict[str, Any] | None = None, **ports: Any) 
         if length_names
         else lengths[0]
     )
-    streams = [plan.steps[at] for at in t.streams]
+    streams = [plan.payload(at) for at in t.streams]
     stream_valid = Signal(bool(0)) if streams else Constant(bool(0))
     stream_take = Signal(bool(0))
-    loop_counts = [Signal(intbv(0)[count_bits(plan.steps[at].maximum) :]) for at in t.loops]
+    loop_counts = [Signal(intbv(0)[count_bits(plan.loop(at).maximum) :]) for at in t.loops]
     loop_more = [Signal(bool(0)) for _ in t.loops]
     more = Signal(bool(0)) if t.loops else Constant(bool(0))
 
@@ -384,8 +384,11 @@ def rfc_publisher(plan: Plan, held: dict[str, Any] | None = None, **ports: Any) 
     m_axis = [ports[f"m_axis_{name}"] for name in ("tdata", "tkeep", "tvalid", "tready", "tlast")]
     if not buffered:
         blocks.append(
-            byte_packer(clk, rst, give, data, room, start, frame_total, flush, idle, *m_axis, width)
-        )
+            byte_packer(
+                clk, rst, give, data, room, start, frame_total, flush, idle,
+                m_axis[0], m_axis[1], m_axis[2], m_axis[3], m_axis[4], width,
+            )
+        )  # fmt: skip
         return blocks
     largest = Constant(intbv(2**COUNTER_BITS - 1)[COUNTER_BITS:])
     packed = (p_data, p_keep, p_valid, p_ready, p_last)
@@ -396,9 +399,10 @@ def rfc_publisher(plan: Plan, held: dict[str, Any] | None = None, **ports: Any) 
     errors = ports["error_count"]
     blocks.append(
         frame_buffer(
-            clk, rst, p_data, p_valid, commit, written, busy, errors, *m_axis, width, depth
+            clk, rst, p_data, p_valid, commit, written, busy, errors,
+            m_axis[0], m_axis[1], m_axis[2], m_axis[3], m_axis[4], width, depth,
         )
-    )
+    )  # fmt: skip
     return blocks
 
 
@@ -494,13 +498,13 @@ def stream_handshakes(
     valids = []
     table = [0] * len(plan.steps)
     for index, at in enumerate(t.streams):
-        name = plan.steps[at].stream
-        ready = ports[f"{name}_tready"]
-        if plan.streamed_last is not None and plan.steps[at].channel == 0:
+        stream = plan.payload(at)
+        ready = ports[f"{stream.stream}_tready"]
+        if plan.streamed_last is not None and stream.channel == 0:
             blocks.append(draining_ready(take, pc, at, drain, ready))
         else:
             blocks.append(stream_ready(take, pc, at, ready))
-        valids.append(ports[f"{name}_tvalid"])
+        valids.append(ports[f"{stream.stream}_tvalid"])
         table[at] = index
     if len(valids) > 1:
         blocks.append(select_bit(bits_of(valids), tuple(table), pc, valid))

@@ -67,7 +67,7 @@ def rfc_subscriber(plan: Plan, **ports: Any) -> Any:
     steps = len(plan.steps)
     pc_bits = max(1, (steps - 1).bit_length())
     end_pc = t.end
-    payloads = [plan.steps[pc] for pc in t.streams]
+    payloads = [plan.payload(pc) for pc in t.streams]
     out_bytes = max([width] + [max(width, p.element_size) for p in payloads])
     length_limit = max([1, *t.maximum])
     count_width = count_bits(length_limit)
@@ -131,7 +131,7 @@ def rfc_subscriber(plan: Plan, **ports: Any) -> Any:
     # ---- handshakes in from the consumer, selected by the current step
     channel_ready = Signal(bool(1)) if len(plan.channels) > 1 else Constant(bool(1))
     o_ready = Signal(bool(0)) if t.streams else Constant(bool(0))
-    loop_counts = [Signal(intbv(0)[count_bits(plan.steps[pc].maximum) :]) for pc in t.loops]
+    loop_counts = [Signal(intbv(0)[count_bits(plan.loop(pc).maximum) :]) for pc in t.loops]
     loop_more = [Signal(bool(0)) for _ in t.loops]
     more = Signal(bool(0)) if t.loops else Constant(bool(0))
     readies = [

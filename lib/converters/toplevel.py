@@ -72,7 +72,7 @@ def top_block(
         ],
     )
     function = ast.FunctionDef(
-        name=name, args=arguments, body=[ast.Return(call)], decorator_list=[], type_params=[]
+        name=name, args=arguments, body=[ast.Return(call)], decorator_list=[]
     )
     module = ast.fix_missing_locations(ast.Module(body=[function], type_ignores=[]))
     source = ast.unparse(module) + "\n"
@@ -87,7 +87,7 @@ def top_block(
 
 def _frames_without_context(context: int = 1) -> list[inspect.FrameInfo]:
     """`inspect.stack` without reading source lines: the caller's frames, outermost last."""
-    frame = sys._getframe(1)
+    frame: types.FrameType | None = sys._getframe(1)
     records = []
     while frame is not None:
         code = frame.f_code
@@ -196,6 +196,7 @@ _ELABORATING = threading.RLock()
 
 
 def _patch_myhdl() -> None:
+    replacements: list[tuple[types.ModuleType, str, object]]
     replacements = [(module, "inspect", _QuickInspect("inspect")) for module in _STACK_CALLERS]
     replacements += [(module, "set", _InsertionOrderedSet) for module in _NAME_SET_USERS]
     _patched.saved = [

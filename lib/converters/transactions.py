@@ -93,7 +93,8 @@ def _walk(plan: Plan, start: int, stop: int, values: Mapping[str, Any], record: 
 
 def _payload_bytes(step: Payload, value: Any) -> bytes:
     if step.field.kind is FieldKind.STRING:
-        return value.encode()
+        text: str = value
+        return text.encode()
     array = np.asarray(value, dtype=PRIMITIVE_DTYPES[step.field.element_type])
     if step.is_bool:
         array = array.astype(bool).astype(np.uint8)
@@ -132,7 +133,7 @@ def _unwalk(plan: Plan, layout: Layout, start: int, stop: int, record: Mapping[s
         elif isinstance(step, Loop):
             count = record[step.count_port] if step.count_port else 0
             channel = plan.channels[step.element_channel]
-            items = []
+            items: list[Values | str] = []
             for _ in range(count):
                 element = elements[channel.name].pop(0)
                 inner = step.field.element

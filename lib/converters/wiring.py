@@ -74,15 +74,12 @@ def loop_counters(plan: Plan, clk: Any, rst: Any, pc: Any, count: Any, load: Any
     loops = [at for at, step in enumerate(plan.steps) if isinstance(step, Loop)]
     blocks = []
     for at, counter, flag in zip(loops, counters, mores, strict=True):
-        loop = plan.steps[at]
-        assert isinstance(loop, Loop)
+        loop = plan.loop(at)
         blocks.append(loop_counter(clk, rst, pc, count, load, step, at, loop.next, counter, flag))
     if len(mores) > 1:
         table = [0] * len(plan.steps)
         for index, at in enumerate(loops):
-            loop = plan.steps[at]
-            assert isinstance(loop, Loop)
-            table[loop.next] = index
+            table[plan.loop(at).next] = index
         blocks.append(select_bit(bits_of(mores), tuple(table), pc, more))
     elif mores:
         blocks.append(follow(mores[0], more))

@@ -51,7 +51,7 @@ def routed_slice(
     )
 
     @always_comb
-    def offer():
+    def offer() -> None:
         any_valid.next = s_valid != 0
         taken.next = (m_valid & m_ready) != 0
 

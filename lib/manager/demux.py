@@ -84,7 +84,7 @@ def chunk_demux(
     answering = status_request is not None
 
     @always_comb
-    def assemble_header():
+    def assemble_header() -> None:
         # The header so far, with this beat's bytes in their place.
         assembled = intbv(0)[8 * HEADER_BYTES :]
         assembled[:] = stored
@@ -94,12 +94,12 @@ def chunk_demux(
         word.next = assembled
 
     @always_comb
-    def count_lanes():
+    def count_lanes() -> None:
         # A table of every tkeep (two levels of LUTs), not a chain of adders.
         beat_bytes.next = popcounts[s_tkeep]
 
     @always_comb
-    def drive_outputs():
+    def drive_outputs() -> None:
         m_tdata.next = s_tdata
         if state == t_state.EMPTY:
             m_tkeep.next = 0
@@ -123,17 +123,17 @@ def chunk_demux(
             s_tready.next = 1
 
     @always_comb
-    def report():
+    def report() -> None:
         error_count.next = errors
 
     if answering:
 
         @always_comb
-        def ask():
+        def ask() -> None:
             status_request.next = asked
 
     @always_seq(clk.posedge, reset=rst)
-    def parse():
+    def parse() -> None:
         fault = False
         asked.next = False
         if state == t_state.HEADER:

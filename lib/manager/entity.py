@@ -137,7 +137,8 @@ def manager_body(shape: ManagerShape, **ports: Any) -> Any:
     parts.append(spread_bit(taken, tready))
     parts.append(
         chunk_demux(
-            clk, rst, *mm2s[:2], mm2s_valid, mm2s_ready, mm2s[2], *beat, tvalid, tready,
+            clk, rst, mm2s[0], mm2s[1], mm2s_valid, mm2s_ready, mm2s[2], beat[0], beat[1], beat[2],
+            tvalid, tready,
             ports["error_count"], width=width, subscribers=fanout, status_request=request,
         )
     )  # fmt: skip
@@ -248,7 +249,7 @@ def spread_bit(bit: Any, vector: Any) -> Any:
     ones = 2 ** len(vector) - 1
 
     @always_comb
-    def copy():
+    def copy() -> None:
         if bit:
             vector.next = ones
         else:
@@ -274,7 +275,7 @@ def silent_output(clk: Any, tdata: Any, tkeep: Any, tvalid: Any, tlast: Any) -> 
     """No publishers: the PL→PS stream never sends."""
 
     @always(clk.posedge)
-    def idle():
+    def idle() -> None:
         tdata.next = 0
         tkeep.next = 0
         tvalid.next = 0

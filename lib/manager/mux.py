@@ -113,7 +113,7 @@ def chunk_mux(
     )
 
     @always_comb
-    def select_holder():
+    def select_holder() -> None:
         data = intbv(0)[width:]
         keep = intbv(0)[lanes:]
         for index in range(n):
@@ -127,7 +127,7 @@ def chunk_mux(
         switch.next = offer != 0 and not offer[owner]
 
     @always_comb
-    def find_offered():
+    def find_offered() -> None:
         chosen = 0
         for index in range(n):
             if offer[index]:
@@ -135,7 +135,7 @@ def chunk_mux(
         offered.next = chosen
 
     @always_comb
-    def open_chunk():
+    def open_chunk() -> None:
         # The header of a chunk of the offered publisher: id, flags, its frame length.
         flags = intbv(0)[16:]
         if preemptive:
@@ -152,7 +152,7 @@ def chunk_mux(
         opening.next = assembled
 
     @always_comb
-    def present():
+    def present() -> None:
         # A beat leaves once it is known to end its chunk or its successor is held: the
         # last beat held can then always carry `tlast` when a preemption ends the chunk.
         valid = count == 2 or (count == 1 and head_last)
@@ -161,7 +161,7 @@ def chunk_mux(
         space.next = count < 2 or (valid and m_tready)
 
     @always_comb
-    def drive_outputs():
+    def drive_outputs() -> None:
         m_tvalid.next = out_valid
         m_tlast.next = head_last
         m_tdata.next = head_data
@@ -170,7 +170,7 @@ def chunk_mux(
         s_tready.next = grant
 
     @always_seq(clk.posedge, reset=rst)
-    def sequence():
+    def sequence() -> None:
         # What enters the buffer this cycle, if anything, and whether the chunk ends on the
         # youngest beat already held (a preemption, or a null last beat folded onto it).
         enter = False

@@ -83,7 +83,7 @@ def status_inserter(
     if count:
 
         @always_comb
-        def assemble():
+        def assemble() -> None:
             assembled = intbv(0)[bits:]
             assembled[16:0] = STATUS_ID
             assembled[32:16] = flags
@@ -94,14 +94,14 @@ def status_inserter(
     else:
 
         @always_comb
-        def assemble():
+        def assemble() -> None:
             assembled = intbv(0)[bits:]
             assembled[16:0] = STATUS_ID
             assembled[32:16] = flags
             snapshot.next = assembled
 
     @always_comb
-    def drive_outputs():
+    def drive_outputs() -> None:
         if state == t_state.FORWARD:
             m_tdata.next = s_tdata
             m_tkeep.next = s_tkeep
@@ -116,7 +116,7 @@ def status_inserter(
             s_tready.next = 0
 
     @always_seq(clk.posedge, reset=rst)
-    def advance():
+    def advance() -> None:
         wanted = pending or request
         if state == t_state.FORWARD:
             between = not inside

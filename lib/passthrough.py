@@ -16,10 +16,11 @@ from myhdl import always_seq, block
 
 from rfc.lib.converters.wiring import follow
 from rfc.lib.interface import MessageInterface
+from rfc.lib.types import Instances, SignalLike
 
 
 @block
-def pass_through(clk: Any, rst: Any, **ports: Any) -> Any:
+def pass_through(clk: SignalLike, rst: SignalLike, **ports: SignalLike) -> Instances:
     """Forward ``in0`` to ``out0``; what only ``in0`` has is taken and dropped."""
     wires = []
     for name, target in ports.items():
@@ -38,7 +39,9 @@ def pass_through(clk: Any, rst: Any, **ports: Any) -> Any:
 
 
 @block
-def typed_pass_through(clk: Any, rst: Any, in0: Any, out0: Any) -> Any:
+def typed_pass_through(
+    clk: SignalLike, rst: SignalLike, in0: MessageInterface, out0: MessageInterface
+) -> Instances:
     """Forward interface object ``in0`` to ``out0``; readys flow back, the rest is dropped."""
     wires = [
         follow(target, source) if name == "ready" else follow(source, target)
@@ -48,7 +51,7 @@ def typed_pass_through(clk: Any, rst: Any, in0: Any, out0: Any) -> Any:
 
 
 @block
-def take_all(clk: Any, rst: Any, ready: Any) -> Any:
+def take_all(clk: SignalLike, rst: SignalLike, ready: SignalLike) -> Instances:
     """Hold `ready` high after reset: a part of the message no output carries is dropped."""
 
     @always_seq(clk.posedge, reset=rst)

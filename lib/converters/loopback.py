@@ -9,8 +9,6 @@ elements over while it parses, before its record. The entity, ``rfc_loopback``, 
 
 from __future__ import annotations
 
-from typing import Any
-
 from myhdl import Signal, block, intbv
 
 from rfc.lib.converters.buffers import DATA_ROLES, stream_buffers
@@ -28,6 +26,7 @@ from rfc.lib.converters.steps import ROOT, Plan
 from rfc.lib.converters.subscriber import rfc_subscriber
 from rfc.lib.converters.toplevel import port_signals
 from rfc.lib.converters.wiring import follow
+from rfc.lib.types import Instances, SignalLike
 
 #: Entity name of every loopback (the testbench instantiates it by that name).
 LOOPBACK = "rfc_loopback"
@@ -59,7 +58,7 @@ def loopback_ports(width: int) -> tuple[Port, ...]:
 
 
 @block
-def rfc_loopback(plan: Plan, **ports: Any) -> Any:
+def rfc_loopback(plan: Plan, **ports: SignalLike) -> Instances:
     """The subscriber and publisher of `plan`, wired through FIFOs; `ports`: `loopback_ports`."""
     clk, rst = ports["clk"], ports["rst"]
     sub = port_signals(ports_of(plan, Side.SUBSCRIBER))

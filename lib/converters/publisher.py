@@ -23,8 +23,6 @@ finished) and a FIFO is empty while its stream still owes beats.
 
 from __future__ import annotations
 
-from typing import Any
-
 from myhdl import ConcatSignal, Constant, Signal, always_comb, always_seq, block, intbv
 
 from rfc.lib.converters.frame_buffer import frame_buffer
@@ -36,6 +34,7 @@ from rfc.lib.converters.steps import End, Loop, Next, Payload, Plan, Record
 from rfc.lib.converters.tables import Kind, tables
 from rfc.lib.converters.wiring import bits_of, follow, loop_counters, select_bit
 from rfc.lib.slice import register_slice
+from rfc.lib.types import Instances, SignalLike
 from rfc.messages.codec import default_values, encode
 
 
@@ -75,7 +74,9 @@ def _length_inputs(plan: Plan) -> tuple[list[str], tuple[int, ...]]:
 
 
 @block
-def rfc_publisher(plan: Plan, held: dict[str, Any] | None = None, **ports: Any) -> Any:
+def rfc_publisher(
+    plan: Plan, held: dict[str, SignalLike] | None = None, **ports: SignalLike
+) -> Instances:
     """The publisher for `plan`; `ports` holds one signal per name of `publisher_ports`.
 
     `held`: behind a record-first producer, per stream that comes through a FIFO, a signal
@@ -407,7 +408,13 @@ def rfc_publisher(plan: Plan, held: dict[str, Any] | None = None, **ports: Any) 
 
 
 @block
-def skid_through(clk: Any, rst: Any, outer: list[Any], inner: list[Any], waiting: Any) -> Any:
+def skid_through(
+    clk: SignalLike,
+    rst: SignalLike,
+    outer: list[SignalLike],
+    inner: list[SignalLike],
+    waiting: SignalLike,
+) -> Instances:
     """A register slice from the streamed-through stream's port to the publisher's side of it.
 
     Its ``tready`` then comes from a flip-flop, so no path runs from the publisher's frame
@@ -425,7 +432,7 @@ def skid_through(clk: Any, rst: Any, outer: list[Any], inner: list[Any], waiting
     return register_slice(clk, rst, *outer, *inner), either
 
 
-def _widened(signal: Any) -> list[Any]:
+def _widened(signal: SignalLike) -> list[SignalLike]:
     """A length input zero-extended to 32 bits: parts of the (flat) bus the control reads."""
     if len(signal) >= 32:
         return [signal]
@@ -433,7 +440,9 @@ def _widened(signal: Any) -> list[Any]:
 
 
 @block
-def channel_ready(next_element: Any, pc: Any, at: int, ready: Any) -> Any:
+def channel_ready(
+    next_element: SignalLike, pc: SignalLike, at: int, ready: SignalLike
+) -> Instances:
     """Acknowledge an element when its Next step (`at`) is done."""
 
     @always_comb
@@ -444,7 +453,9 @@ def channel_ready(next_element: Any, pc: Any, at: int, ready: Any) -> Any:
 
 
 @block
-def channel_readies(plan: Plan, ports: dict[str, Any], pc: Any, next_element: Any) -> Any:
+def channel_readies(
+    plan: Plan, ports: dict[str, SignalLike], pc: SignalLike, next_element: SignalLike
+) -> Instances:
     """One `channel_ready` per selected element channel."""
     blocks = []
     for at, step in enumerate(plan.steps):
@@ -455,7 +466,7 @@ def channel_readies(plan: Plan, ports: dict[str, Any], pc: Any, next_element: An
 
 
 @block
-def stream_ready(take: Any, pc: Any, at: int, ready: Any) -> Any:
+def stream_ready(take: SignalLike, pc: SignalLike, at: int, ready: SignalLike) -> Instances:
     """Take a sub-stream beat when the payload step `at` has used all of it."""
 
     @always_comb
@@ -466,7 +477,7 @@ def stream_ready(take: Any, pc: Any, at: int, ready: Any) -> Any:
 
 
 @block
-def anything_left(empties: Any, left: Any) -> Any:
+def anything_left(empties: SignalLike, left: SignalLike) -> Instances:
     """`left` while any of the FIFOs whose `empties` bits these are holds a beat."""
     full = 2 ** len(empties) - 1
 
@@ -478,7 +489,9 @@ def anything_left(empties: Any, left: Any) -> Any:
 
 
 @block
-def draining_ready(take: Any, pc: Any, at: int, drain: Any, ready: Any) -> Any:
+def draining_ready(
+    take: SignalLike, pc: SignalLike, at: int, drain: SignalLike, ready: SignalLike
+) -> Instances:
     """`stream_ready`, and every beat while `drain`: the streamed-through stream's extra beats."""
 
     @always_comb
@@ -490,8 +503,13 @@ def draining_ready(take: Any, pc: Any, at: int, drain: Any, ready: Any) -> Any:
 
 @block
 def stream_handshakes(
-    plan: Plan, ports: dict[str, Any], pc: Any, take: Any, valid: Any, drain: Any
-) -> Any:
+    plan: Plan,
+    ports: dict[str, SignalLike],
+    pc: SignalLike,
+    take: SignalLike,
+    valid: SignalLike,
+    drain: SignalLike,
+) -> Instances:
     """Sub-stream readies, and `valid`: the tvalid of the current step's sub-stream."""
     t = tables(plan)
     blocks = []

@@ -19,8 +19,6 @@ never hangs.
 
 from __future__ import annotations
 
-from typing import Any
-
 from myhdl import Constant, Signal, always_comb, always_seq, block, concat, intbv
 
 from rfc.lib.converters.fields import field_captures
@@ -38,6 +36,7 @@ from rfc.lib.converters.steps import Plan
 from rfc.lib.converters.tables import Kind, tables
 from rfc.lib.converters.window import byte_window
 from rfc.lib.converters.wiring import bits_of, loop_counters, select_bit
+from rfc.lib.types import Instances, SignalLike
 
 TRUNCATED, MAXIMUM, TRAILING, ENCODING = (
     int(Reason.TRUNCATED),
@@ -55,7 +54,7 @@ def subscriber_ports(plan: Plan) -> list[str]:
 
 
 @block
-def rfc_subscriber(plan: Plan, **ports: Any) -> Any:
+def rfc_subscriber(plan: Plan, **ports: SignalLike) -> Instances:
     """The subscriber for `plan`; `ports` holds one signal per name of `subscriber_ports`."""
     t = tables(plan)
     width = plan.width

@@ -12,11 +12,10 @@ An empty chunk of id `STATUS_ID` is the processor asking for the drop counters: 
 
 from __future__ import annotations
 
-from typing import Any
-
 from myhdl import Signal, always_comb, always_seq, block, enum, intbv
 
 from rfc.lib.manager.header import FLAG_END, FLAG_START, HEADER_BYTES, STATUS_ID, BusGeometry
+from rfc.lib.types import Instances, SignalLike
 
 #: Width of the saturating protocol-error counter.
 ERROR_COUNT_BITS = 16
@@ -24,23 +23,23 @@ ERROR_COUNT_BITS = 16
 
 @block
 def chunk_demux(
-    clk: Any,
-    rst: Any,
-    s_tdata: Any,
-    s_tkeep: Any,
-    s_tvalid: Any,
-    s_tready: Any,
-    s_tlast: Any,
-    m_tdata: Any,
-    m_tkeep: Any,
-    m_tlast: Any,
-    m_tvalid: Any,
-    m_tready: Any,
-    error_count: Any,
+    clk: SignalLike,
+    rst: SignalLike,
+    s_tdata: SignalLike,
+    s_tkeep: SignalLike,
+    s_tvalid: SignalLike,
+    s_tready: SignalLike,
+    s_tlast: SignalLike,
+    m_tdata: SignalLike,
+    m_tkeep: SignalLike,
+    m_tlast: SignalLike,
+    m_tvalid: SignalLike,
+    m_tready: SignalLike,
+    error_count: SignalLike,
     width: int,
     subscribers: int,
-    status_request: Any = None,
-) -> Any:
+    status_request: SignalLike = None,
+) -> Instances:
     """Demultiplex PS→PL chunks to `subscribers` converters.
 
     Args:

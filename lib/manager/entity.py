@@ -13,8 +13,8 @@ the manager hands on comes from a flip-flop.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
 
 from myhdl import ConcatSignal, Signal, always, always_comb, block, intbv
 
@@ -29,6 +29,7 @@ from rfc.lib.manager.mux import chunk_mux
 from rfc.lib.manager.status import status_inserter
 from rfc.lib.schedulers.spec import AnySchedulerSpec
 from rfc.lib.slice import parts_slice
+from rfc.lib.types import Instances, SignalLike
 
 #: Bits of a publisher's frame-length input.
 LENGTH_BITS = 32
@@ -101,17 +102,17 @@ def status_inputs(subscribers: int) -> list[str]:
     return [status_port(i, reason) for i in range(subscribers) for reason in DROP_REASONS]
 
 
-def manager_top(shape: ManagerShape, name: str) -> Any:
+def manager_top(shape: ManagerShape, name: str) -> Callable[..., Instances]:
     """The manager as a MyHDL top-level block named `name`; call it with its port signals."""
     return top_block(name, [p.name for p in manager_ports(shape)], manager_body, shape=shape)
 
 
 @block
-def manager_body(shape: ManagerShape, **ports: Any) -> Any:
+def manager_body(shape: ManagerShape, **ports: SignalLike) -> Instances:
     """The demultiplexer fanned out to the subscribers, the multiplexer over the publishers."""
     width, lanes = shape.width, shape.width // 8
     clk, rst = ports["clk"], ports["rst"]
-    parts: list[Any] = []
+    parts: list[Instances] = []
     n_sub, n_pub = shape.subscribers, shape.publishers
 
     # The DMA's MM2S stream, registered on the way in.
@@ -198,16 +199,20 @@ def manager_body(shape: ManagerShape, **ports: Any) -> Any:
 
 @block
 def publisher_inputs(
-    shape: ManagerShape, clk: Any, rst: Any, ports: dict[str, Any], out: dict[str, Any],
-    out_ready: Any,
-) -> Any:  # fmt: skip
+    shape: ManagerShape,
+    clk: SignalLike,
+    rst: SignalLike,
+    ports: dict[str, SignalLike],
+    out: dict[str, SignalLike],
+    out_ready: SignalLike,
+) -> Instances:
     """Each publisher's stream and length through a slice, then the multiplexer over them."""
     assert shape.scheduler is not None
     width, lanes, n_pub = shape.width, shape.width // 8, shape.publishers
     inputs = shape.scheduler.n
-    parts: list[Any] = []
+    parts: list[Instances] = []
     names = ("tdata", "tkeep", "tlast", "length")
-    sliced: dict[str, list[Any]] = {name: [] for name in (*names, "tvalid", "tready")}
+    sliced: dict[str, list[SignalLike]] = {name: [] for name in (*names, "tvalid", "tready")}
     for i in range(n_pub):
         sources = [ports[f"pub{i}_{name}"] for name in names]
         sinks = stream_like(sources)
@@ -244,7 +249,7 @@ def publisher_inputs(
 
 
 @block
-def spread_bit(bit: Any, vector: Any) -> Any:
+def spread_bit(bit: SignalLike, vector: SignalLike) -> Instances:
     """Drive every bit of `vector` with `bit`."""
     ones = 2 ** len(vector) - 1
 
@@ -258,7 +263,7 @@ def spread_bit(bit: Any, vector: Any) -> Any:
     return copy
 
 
-def _vector(signals: list[Any]) -> tuple[Any, Any]:
+def _vector(signals: list[SignalLike]) -> tuple[SignalLike, SignalLike]:
     """One vector of the signals, the first in the lowest bits.
 
     Returns:
@@ -271,7 +276,9 @@ def _vector(signals: list[Any]) -> tuple[Any, Any]:
 
 
 @block
-def silent_output(clk: Any, tdata: Any, tkeep: Any, tvalid: Any, tlast: Any) -> Any:
+def silent_output(
+    clk: SignalLike, tdata: SignalLike, tkeep: SignalLike, tvalid: SignalLike, tlast: SignalLike
+) -> Instances:
     """No publishers: the PL→PS stream never sends."""
 
     @always(clk.posedge)

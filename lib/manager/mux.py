@@ -18,13 +18,12 @@ chunks always carry whole messages (docs/protocol.md).
 
 from __future__ import annotations
 
-from typing import Any
-
 from myhdl import Signal, always_comb, always_seq, block, enum, intbv
 
 from rfc.lib.manager.header import FLAG_END, FLAG_START, HEADER_BYTES, BusGeometry
 from rfc.lib.schedulers.hardware import scheduler_block
 from rfc.lib.schedulers.spec import AnySchedulerSpec, CompositionSpec
+from rfc.lib.types import Instances, SignalLike
 
 
 def is_preemptive(spec: AnySchedulerSpec) -> bool:
@@ -36,22 +35,22 @@ def is_preemptive(spec: AnySchedulerSpec) -> bool:
 
 @block
 def chunk_mux(
-    clk: Any,
-    rst: Any,
-    s_tdata: Any,
-    s_tkeep: Any,
-    s_tvalid: Any,
-    s_tready: Any,
-    s_tlast: Any,
-    s_length: Any,
-    m_tdata: Any,
-    m_tkeep: Any,
-    m_tvalid: Any,
-    m_tready: Any,
-    m_tlast: Any,
+    clk: SignalLike,
+    rst: SignalLike,
+    s_tdata: SignalLike,
+    s_tkeep: SignalLike,
+    s_tvalid: SignalLike,
+    s_tready: SignalLike,
+    s_tlast: SignalLike,
+    s_length: SignalLike,
+    m_tdata: SignalLike,
+    m_tkeep: SignalLike,
+    m_tvalid: SignalLike,
+    m_tready: SignalLike,
+    m_tlast: SignalLike,
     width: int,
     scheduler: AnySchedulerSpec,
-) -> Any:
+) -> Instances:
     """Multiplex `publishers` converters onto the PL→PS DMA stream through a scheduler.
 
     Args:

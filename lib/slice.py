@@ -16,6 +16,7 @@ from myhdl import ConcatSignal, Signal, always_comb, always_seq, block, intbv
 from rfc.lib.types import Instances, SignalLike
 
 
+# Its skid-buffer moves recur in the guards and the manager's mux, on their own registers.
 @block
 def register_slice(
     clk: SignalLike,
@@ -86,6 +87,7 @@ def slice_body(fields: tuple[tuple[str, int, bool], ...], **ports: SignalLike) -
     return core, outputs
 
 
+# Its ports recur in the manager's `routed_slice` and `slice_chain`, which wrap it.
 @block
 def parts_slice(
     clk: SignalLike,

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from myhdl import always_seq, block
 
-from rfc.lib.converters.steps import Plan, Record, Slot, SlotRole
+from rfc.lib.converters.steps import Plan, Slot, SlotRole
 from rfc.lib.converters.tables import pieces, tables
 from rfc.lib.types import Instances, SignalLike
 
@@ -96,9 +96,7 @@ def field_captures(
     """
     t = tables(plan)
     registers = []
-    for pc, step in enumerate(plan.steps):
-        if not isinstance(step, Record):
-            continue
+    for pc, step in plan.records():
         for slot in step.slots:
             if slot.role is SlotRole.ENCAPSULATION:
                 target = header

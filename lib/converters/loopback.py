@@ -20,6 +20,7 @@ from rfc.lib.converters.ports import (
     PortRole,
     Side,
     ports_of,
+    stream_path_ports,
 )
 from rfc.lib.converters.publisher import rfc_publisher
 from rfc.lib.converters.steps import ROOT, Plan
@@ -34,27 +35,12 @@ LOOPBACK = "rfc_loopback"
 
 def loopback_ports(width: int) -> tuple[Port, ...]:
     """The loopback's ports: the subscriber's AXI-Stream in, the publisher's out, status."""
-    ports = [
-        Port("clk", 1, Direction.IN, PortRole.CLOCK),
-        Port("rst", 1, Direction.IN, PortRole.RESET),
-    ]
-    for bus, into, out in (
-        ("s_axis", Direction.IN, Direction.OUT),
-        ("m_axis", Direction.OUT, Direction.IN),
-    ):
-        ports += [
-            Port(f"{bus}_tdata", 8 * width, into, PortRole.TDATA, bus),
-            Port(f"{bus}_tkeep", width, into, PortRole.TKEEP, bus),
-            Port(f"{bus}_tvalid", 1, into, PortRole.TVALID, bus),
-            Port(f"{bus}_tready", 1, out, PortRole.TREADY, bus),
-            Port(f"{bus}_tlast", 1, into, PortRole.TLAST, bus),
-        ]
-    ports += [
+    return (
+        *stream_path_ports(width),
         Port("frame_length", COUNTER_BITS, Direction.OUT, PortRole.FRAME_LENGTH),
         Port("error_count", COUNTER_BITS, Direction.OUT, PortRole.ERROR_COUNT),
         Port("fields_valid", 1, Direction.OUT, PortRole.VALID),
-    ]
-    return tuple(ports)
+    )
 
 
 @block

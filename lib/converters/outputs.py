@@ -37,6 +37,7 @@ def length_register(
     return write
 
 
+# A plan, its ports and the control's signals, as every part of a converter takes them.
 @block
 def length_registers(
     plan: Plan,
@@ -79,6 +80,7 @@ def element_handshake(
     return status
 
 
+# A plan, its ports and the control's signals, as every part of a converter takes them.
 @block
 def element_handshakes(
     plan: Plan,

@@ -20,6 +20,7 @@ from rfc.lib.converters.ports import COUNTER_BITS
 from rfc.lib.types import Instances, SignalLike
 
 
+# AXI-Stream out as `frame_buffer`'s, which it feeds: each block names its own ports.
 @block
 def byte_packer(
     clk: SignalLike,

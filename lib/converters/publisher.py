@@ -180,6 +180,7 @@ def rfc_publisher(
     loop_more = [Signal(bool(0)) for _ in t.loops]
     more = Signal(bool(0)) if t.loops else Constant(bool(0))
 
+    # Reads the step ROMs as the subscriber's `control` does; a MyHDL process converts whole.
     @always_comb
     def control() -> None:
         kind = kind_rom[pc]
@@ -501,6 +502,7 @@ def draining_ready(
     return acknowledge
 
 
+# A plan, its ports and the control's signals, as every part of a converter takes them.
 @block
 def stream_handshakes(
     plan: Plan,

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from myhdl import ConcatSignal, Constant, Signal, always_comb, block, intbv
 
-from rfc.lib.converters.steps import Loop, Payload, Plan, Record, SlotRole, Step
+from rfc.lib.converters.steps import Loop, Payload, Plan, SlotRole, Step
 from rfc.lib.converters.tables import pieces, tables
 from rfc.lib.types import Instances, SignalLike
 
@@ -34,6 +34,7 @@ def lane_select(
     return select
 
 
+# Adds a constant, unlike `frame_length.accumulate`: MyHDL writes it into the VHDL.
 @block
 def prefix_value(length: SignalLike, terminator: int, prefix: SignalLike) -> Instances:
     """The uint32 a length prefix carries: the count, plus the NUL for a CDR string."""
@@ -68,9 +69,7 @@ def record_sources(
     zero = [intbv(0)[8:]]
     header = [[intbv(value)[8:]] for value in CDR_HEADER]
     blocks = []
-    for pc, step in enumerate(plan.steps):
-        if not isinstance(step, Record):
-            continue
+    for pc, step in plan.records():
         for slot in step.slots:
             if slot.role is SlotRole.ENCAPSULATION:
                 value = None

@@ -165,6 +165,7 @@ def rfc_subscriber(plan: Plan, **ports: SignalLike) -> Instances:
         else:
             data.next = front
 
+    # Reads the step ROMs as the publisher's `control` does; a MyHDL process converts whole.
     @always_comb
     def control() -> None:
         kind = kind_rom[pc]

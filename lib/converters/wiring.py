@@ -78,6 +78,7 @@ def loop_counter(
     return track, status
 
 
+# The ports of `loop_counter`, one per Loop step of the plan.
 @block
 def loop_counters(
     plan: Plan,

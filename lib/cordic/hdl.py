@@ -170,6 +170,7 @@ def cordic_pipeline(clk: SignalLike, rst: SignalLike, advance: SignalLike, valid
     pi_rom = (config.pi,)
     angle_bits = config.angle_width
 
+    # Registers of one stage, like `stage.micro_rotation`'s; this one turns the input by π.
     @always_seq(clk.posedge, reset=rst)
     def prerotate() -> None:
         if advance:

@@ -23,6 +23,7 @@ def stream_like(signals: list[SignalLike]) -> list[SignalLike]:
     ]
 
 
+# The ports of `parts_slice` (a MyHDL block takes every port as its own parameter).
 @block
 def routed_slice(
     clk: SignalLike,
@@ -63,6 +64,7 @@ def routed_slice(
     return core, offer
 
 
+# The ports of `parts_slice`, and how many slices to chain.
 @block
 def slice_chain(
     clk: SignalLike,

@@ -19,7 +19,14 @@ from dataclasses import dataclass
 from myhdl import ConcatSignal, Signal, always, always_comb, block, intbv
 
 from rfc.lib.converters.malformed import DROP_REASONS, status_port
-from rfc.lib.converters.ports import COUNTER_BITS, Direction, Port, PortRole
+from rfc.lib.converters.ports import (
+    COUNTER_BITS,
+    Direction,
+    Port,
+    PortRole,
+    axis_ports,
+    clock_ports,
+)
 from rfc.lib.converters.toplevel import top_block
 from rfc.lib.converters.wiring import follow, index_bit
 from rfc.lib.manager.boundary import routed_slice, slice_chain, stream_like
@@ -62,37 +69,23 @@ class ManagerShape:
             raise ValueError(f"a scheduler of {inputs} inputs for {self.publishers} publishers")
 
 
-def _stream(prefix: str, width: int, source: bool) -> list[Port]:
-    """An AXI-Stream port group; `source` when this entity drives tdata/tvalid."""
-    out, into = (Direction.OUT, Direction.IN) if source else (Direction.IN, Direction.OUT)
-    lanes = width // 8
-    return [
-        Port(f"{prefix}_tdata", width, out, PortRole.TDATA, prefix),
-        Port(f"{prefix}_tkeep", lanes, out, PortRole.TKEEP, prefix),
-        Port(f"{prefix}_tvalid", 1, out, PortRole.TVALID, prefix),
-        Port(f"{prefix}_tready", 1, into, PortRole.TREADY, prefix),
-        Port(f"{prefix}_tlast", 1, out, PortRole.TLAST, prefix),
-    ]
-
-
 def manager_ports(shape: ManagerShape) -> tuple[Port, ...]:
     """The manager's ports, in declaration order."""
     BusGeometry(shape.width)  # validates the width
     ports = [
-        Port("clk", 1, Direction.IN, PortRole.CLOCK),
-        Port("rst", 1, Direction.IN, PortRole.RESET),
-        *_stream("s_axis_mm2s", shape.width, source=False),
-        *_stream("m_axis_s2mm", shape.width, source=True),
+        *clock_ports(),
+        *axis_ports("s_axis_mm2s", shape.width // 8, Direction.IN),
+        *axis_ports("m_axis_s2mm", shape.width // 8, Direction.OUT),
         Port("error_count", ERROR_COUNT_BITS, Direction.OUT, PortRole.ERROR_COUNT),
     ]
     for index in range(shape.subscribers):
-        ports += _stream(f"sub{index}", shape.width, source=True)
+        ports += axis_ports(f"sub{index}", shape.width // 8, Direction.OUT)
     ports += [
         Port(name, COUNTER_BITS, Direction.IN, PortRole.ERROR_COUNT)
         for name in status_inputs(shape.subscribers)
     ]
     for index in range(shape.publishers):
-        ports += _stream(f"pub{index}", shape.width, source=False)
+        ports += axis_ports(f"pub{index}", shape.width // 8, Direction.IN)
         ports.append(Port(f"pub{index}_length", LENGTH_BITS, Direction.IN, PortRole.FRAME_LENGTH))
     return tuple(ports)
 

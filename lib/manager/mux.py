@@ -33,6 +33,7 @@ def is_preemptive(spec: AnySchedulerSpec) -> bool:
     return spec.algorithm.preemptive
 
 
+# AXI-Stream in and out like the manager's other parts; each block names its own ports.
 @block
 def chunk_mux(
     clk: SignalLike,
@@ -168,6 +169,7 @@ def chunk_mux(
         ready.next = state == t_state.PAYLOAD and owner_offered and space
         s_tready.next = grant
 
+    # head and tail take the same moves in this one process: a MyHDL process converts whole.
     @always_seq(clk.posedge, reset=rst)
     def sequence() -> None:
         # What enters the buffer this cycle, if anything, and whether the chunk ends on the

@@ -23,6 +23,7 @@ def status_length(counters: int) -> int:
     return 4 * counters
 
 
+# AXI-Stream in and out like the manager's other parts; each block names its own ports.
 @block
 def status_inserter(
     clk: SignalLike,

@@ -28,6 +28,7 @@ def scheduler_block(spec: AnySchedulerSpec) -> SchedulerBlock:
     return composite_scheduler if isinstance(spec, CompositionSpec) else single_scheduler
 
 
+# The ports of every `SchedulerBlock` (a MyHDL block takes every port as a parameter).
 @block
 def single_scheduler(
     clk: SignalLike,
@@ -43,6 +44,7 @@ def single_scheduler(
     return statechart(clk, rst, request, last, ready, offer, grant, spec, policy_hardware(spec))
 
 
+# The ports of every `SchedulerBlock`; a composition's spec.
 @block
 def composite_scheduler(
     clk: SignalLike,

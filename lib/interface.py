@@ -20,13 +20,12 @@ from __future__ import annotations
 import itertools
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any
 
 from myhdl import Signal, block
 
 from rfc.lib.converters.ports import Direction, Port
 from rfc.lib.converters.wiring import follow
-from rfc.lib.types import Instances, SignalLike
+from rfc.lib.types import Instances, Member, SignalLike
 
 #: A member step: an attribute name or a fixed-array index.
 Step = str | int
@@ -103,11 +102,11 @@ def interface_object(
     return root, copies
 
 
-def _container(root: MessageInterface, member: tuple[Step, ...], what: str) -> tuple[Any, Step]:
+def _container(root: MessageInterface, member: tuple[Step, ...], what: str) -> tuple[Member, Step]:
     """The object or list that holds the last step of `member`, created on the way."""
-    here: Any = root
+    here: Member = root
     for step, following in itertools.pairwise(member):
-        fresh: Any = [] if isinstance(following, int) else MessageInterface(f"{what} .{step}")
+        fresh: Member = [] if isinstance(following, int) else MessageInterface(f"{what} .{step}")
         if isinstance(step, int):
             here.extend([None] * (step + 1 - len(here)))
             here[step] = here[step] if here[step] is not None else fresh

@@ -10,13 +10,12 @@ so one block serves every message type; name it as a MyHDL accelerator's ``top``
 from __future__ import annotations
 
 from collections.abc import Iterator
-from typing import Any
 
 from myhdl import always_seq, block
 
 from rfc.lib.converters.wiring import follow
 from rfc.lib.interface import MessageInterface
-from rfc.lib.types import Instances, SignalLike
+from rfc.lib.types import Instances, Member, SignalLike
 
 
 @block
@@ -62,7 +61,7 @@ def take_all(clk: SignalLike, rst: SignalLike, ready: SignalLike) -> Instances:
     return take
 
 
-def _unmatched_readies(source: Any, target: Any) -> Iterator[Any]:
+def _unmatched_readies(source: Member, target: Member) -> Iterator[SignalLike]:
     """The readies of `source`'s handshakes that `target` has no place for."""
     for name, value in vars(source).items():
         if name.startswith("_"):
@@ -78,7 +77,7 @@ def _unmatched_readies(source: Any, target: Any) -> Iterator[Any]:
                     yield from _unmatched_readies(one, partner)
 
 
-def _readies(name: str, value: Any) -> Iterator[Any]:
+def _readies(name: str, value: Member) -> Iterator[SignalLike]:
     if isinstance(value, MessageInterface):
         for inner, member in vars(value).items():
             if not inner.startswith("_"):
@@ -90,7 +89,7 @@ def _readies(name: str, value: Any) -> Iterator[Any]:
         yield value
 
 
-def _members(source: Any, target: Any) -> Iterator[tuple[str, Any, Any]]:
+def _members(source: Member, target: Member) -> Iterator[tuple[str, SignalLike, SignalLike]]:
     """Pairs of same-placed signals of two interface objects (what only `source` has is left)."""
     for name, value in vars(target).items():
         if name.startswith("_") or not hasattr(source, name):
@@ -98,7 +97,9 @@ def _members(source: Any, target: Any) -> Iterator[tuple[str, Any, Any]]:
         yield from _pairs(name, getattr(source, name), value)
 
 
-def _pairs(name: str, source: Any, target: Any) -> Iterator[tuple[str, Any, Any]]:
+def _pairs(
+    name: str, source: Member, target: Member
+) -> Iterator[tuple[str, SignalLike, SignalLike]]:
     if isinstance(target, MessageInterface):
         yield from _members(source, target)
     elif isinstance(target, list):

@@ -17,24 +17,23 @@ a pipelined block holding several messages counts as finished with the oldest on
 
 from __future__ import annotations
 
-from typing import Any
-
 from myhdl import Signal, always_comb, always_seq, block, intbv
 
 from rfc.lib.converters.wiring import bits_of
+from rfc.lib.types import Instances, SignalLike
 
 
 @block
 def busy_watch(
-    clk: Any,
-    rst: Any,
-    in_valid: Any,
-    in_ready: Any,
-    out_valid: Any,
-    out_ready: Any,
-    out_last: Any,
-    busy: Any,
-) -> Any:
+    clk: SignalLike,
+    rst: SignalLike,
+    in_valid: SignalLike,
+    in_ready: SignalLike,
+    out_valid: SignalLike,
+    out_ready: SignalLike,
+    out_last: SignalLike,
+    busy: SignalLike,
+) -> Instances:
     """Drive `busy` from a block's input handshakes (vectors, bit i: input i) and its outputs'."""
     everyone = (1 << len(out_valid)) - 1
     owing = Signal(bool(0))
@@ -69,10 +68,10 @@ def busy_watch(
 
 
 @block
-def busy_body(inputs: int, outputs: int, **ports: Any) -> Any:
+def busy_body(inputs: int, outputs: int, **ports: SignalLike) -> Instances:
     """`busy_watch` with wires ``in<i>_valid``/``in<i>_ready`` and ``out<j>_valid/ready/last``."""
 
-    def wires(side: str, count: int, signal: str) -> Any:
+    def wires(side: str, count: int, signal: str) -> SignalLike:
         return bits_of([ports[f"{side}{i}_{signal}"] for i in range(count)])
 
     return busy_watch(

@@ -7,17 +7,21 @@ it has taken the message; the producer sees ``ready`` in the cycle the last of t
 
 from __future__ import annotations
 
-from typing import Any
-
 from myhdl import ConcatSignal, Signal, always_comb, always_seq, block, intbv
 
 from rfc.lib.converters.wiring import index_bit
+from rfc.lib.types import Instances, SignalLike
 
 
 @block
 def handshake_fork(
-    clk: Any, rst: Any, s_valid: Any, s_ready: Any, m_valid: Any, m_ready: Any
-) -> Any:
+    clk: SignalLike,
+    rst: SignalLike,
+    s_valid: SignalLike,
+    s_ready: SignalLike,
+    m_valid: SignalLike,
+    m_ready: SignalLike,
+) -> Instances:
     """Fork `s_valid`/`s_ready` to the vectors `m_valid`/`m_ready` (bit i: consumer i)."""
     everyone = (1 << len(m_valid)) - 1
     taken = Signal(intbv(0)[len(m_valid) :])
@@ -40,7 +44,7 @@ def handshake_fork(
 
 
 @block
-def fork_body(consumers: int, **ports: Any) -> Any:
+def fork_body(consumers: int, **ports: SignalLike) -> Instances:
     """`handshake_fork` with one ``m<i>_valid``/``m<i>_ready`` pair of wires per consumer."""
     m_valid = Signal(intbv(0)[consumers:])
     m_ready = ConcatSignal(*(ports[f"m{i}_ready"] for i in reversed(range(consumers))))

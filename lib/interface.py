@@ -20,12 +20,12 @@ from __future__ import annotations
 import itertools
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any
 
 from myhdl import Signal, block
 
 from rfc.lib.converters.ports import Direction, Port
 from rfc.lib.converters.wiring import follow
+from rfc.lib.types import Instances, Member, SignalLike
 
 #: A member step: an attribute name or a fixed-array index.
 Step = str | int
@@ -56,13 +56,13 @@ class ArrayPins:
         inward: Per element, whether it is an input of the accelerator.
     """
 
-    elements: list[Any]
-    pins: list[Any]
+    elements: list[SignalLike]
+    pins: list[SignalLike | None]
     inward: list[bool]
 
 
 def interface_object(
-    ports: Sequence[Port], signals: Mapping[str, Any], what: str
+    ports: Sequence[Port], signals: Mapping[str, SignalLike], what: str
 ) -> tuple[MessageInterface, list[ArrayPins]]:
     """Arrange the signals of one port's signature as an interface object.
 
@@ -76,7 +76,7 @@ def interface_object(
         the copies; MyHDL wants blocks instantiated by the block that returns them).
     """
     root = MessageInterface(what)
-    arrays: dict[int, tuple[list[Any], list[Port]]] = {}
+    arrays: dict[int, tuple[list[SignalLike], list[Port]]] = {}
     for port in ports:
         container, last = _container(root, port.member, what)
         signal = signals[port.name]
@@ -89,23 +89,24 @@ def interface_object(
     copies = []
     for elements, array_ports in arrays.values():
         # One list for MyHDL: the elements the accelerator uses, copied from or to their pins.
-        pins: list[Any] = [None] * len(elements)
+        pins: list[SignalLike | None] = [None] * len(elements)
         inward = [False] * len(elements)
         for port in array_ports:
             index = port.member[-1]
             assert isinstance(index, int)
-            pins[index] = signals[port.name]
-            elements[index] = Signal(pins[index].val)
+            pin = signals[port.name]
+            pins[index] = pin
+            elements[index] = Signal(pin.val)
             inward[index] = port.direction is Direction.IN
         copies.append(ArrayPins(elements, pins, inward))
     return root, copies
 
 
-def _container(root: MessageInterface, member: tuple[Step, ...], what: str) -> tuple[Any, Step]:
+def _container(root: MessageInterface, member: tuple[Step, ...], what: str) -> tuple[Member, Step]:
     """The object or list that holds the last step of `member`, created on the way."""
-    here: Any = root
+    here: Member = root
     for step, following in itertools.pairwise(member):
-        fresh: Any = [] if isinstance(following, int) else MessageInterface(f"{what} .{step}")
+        fresh: Member = [] if isinstance(following, int) else MessageInterface(f"{what} .{step}")
         if isinstance(step, int):
             here.extend([None] * (step + 1 - len(here)))
             here[step] = here[step] if here[step] is not None else fresh
@@ -118,7 +119,7 @@ def _container(root: MessageInterface, member: tuple[Step, ...], what: str) -> t
 
 
 @block
-def array_copies(array: ArrayPins) -> Any:
+def array_copies(array: ArrayPins) -> Instances:
     """Drive each list element from its input pin, or each output pin from its element."""
     return [
         follow(pin, element) if into else follow(element, pin)
@@ -128,8 +129,8 @@ def array_copies(array: ArrayPins) -> Any:
 
 
 def typed_block(
-    block_function: Callable[..., Any], ports: Mapping[str, Sequence[Port]], name: str
-) -> Any:
+    block_function: Callable[..., Instances], ports: Mapping[str, Sequence[Port]], name: str
+) -> Callable[..., Instances]:
     """A MyHDL block with flat ports that calls `block_function` with interface objects.
 
     Args:
@@ -141,7 +142,7 @@ def typed_block(
         A ``@block`` function taking ``clk``, ``rst`` and every flat port as keywords.
     """
 
-    def wrapper(**signals: Any) -> Any:
+    def wrapper(**signals: SignalLike) -> Instances:
         objects: dict[str, MessageInterface] = {}
         arrays: list[ArrayPins] = []
         for port, signature in ports.items():

@@ -10,16 +10,16 @@ so one block serves every message type; name it as a MyHDL accelerator's ``top``
 from __future__ import annotations
 
 from collections.abc import Iterator
-from typing import Any
 
 from myhdl import always_seq, block
 
 from rfc.lib.converters.wiring import follow
 from rfc.lib.interface import MessageInterface
+from rfc.lib.types import Instances, Member, SignalLike
 
 
 @block
-def pass_through(clk: Any, rst: Any, **ports: Any) -> Any:
+def pass_through(clk: SignalLike, rst: SignalLike, **ports: SignalLike) -> Instances:
     """Forward ``in0`` to ``out0``; what only ``in0`` has is taken and dropped."""
     wires = []
     for name, target in ports.items():
@@ -38,7 +38,9 @@ def pass_through(clk: Any, rst: Any, **ports: Any) -> Any:
 
 
 @block
-def typed_pass_through(clk: Any, rst: Any, in0: Any, out0: Any) -> Any:
+def typed_pass_through(
+    clk: SignalLike, rst: SignalLike, in0: MessageInterface, out0: MessageInterface
+) -> Instances:
     """Forward interface object ``in0`` to ``out0``; readys flow back, the rest is dropped."""
     wires = [
         follow(target, source) if name == "ready" else follow(source, target)
@@ -47,8 +49,9 @@ def typed_pass_through(clk: Any, rst: Any, in0: Any, out0: Any) -> Any:
     return wires, [take_all(clk, rst, ready) for ready in _unmatched_readies(in0, out0)]
 
 
+# Shaped like the guards' processes, doing none of their checks.
 @block
-def take_all(clk: Any, rst: Any, ready: Any) -> Any:
+def take_all(clk: SignalLike, rst: SignalLike, ready: SignalLike) -> Instances:
     """Hold `ready` high after reset: a part of the message no output carries is dropped."""
 
     @always_seq(clk.posedge, reset=rst)
@@ -58,7 +61,7 @@ def take_all(clk: Any, rst: Any, ready: Any) -> Any:
     return take
 
 
-def _unmatched_readies(source: Any, target: Any) -> Iterator[Any]:
+def _unmatched_readies(source: Member, target: Member) -> Iterator[SignalLike]:
     """The readies of `source`'s handshakes that `target` has no place for."""
     for name, value in vars(source).items():
         if name.startswith("_"):
@@ -74,7 +77,7 @@ def _unmatched_readies(source: Any, target: Any) -> Iterator[Any]:
                     yield from _unmatched_readies(one, partner)
 
 
-def _readies(name: str, value: Any) -> Iterator[Any]:
+def _readies(name: str, value: Member) -> Iterator[SignalLike]:
     if isinstance(value, MessageInterface):
         for inner, member in vars(value).items():
             if not inner.startswith("_"):
@@ -86,7 +89,7 @@ def _readies(name: str, value: Any) -> Iterator[Any]:
         yield value
 
 
-def _members(source: Any, target: Any) -> Iterator[tuple[str, Any, Any]]:
+def _members(source: Member, target: Member) -> Iterator[tuple[str, SignalLike, SignalLike]]:
     """Pairs of same-placed signals of two interface objects (what only `source` has is left)."""
     for name, value in vars(target).items():
         if name.startswith("_") or not hasattr(source, name):
@@ -94,7 +97,9 @@ def _members(source: Any, target: Any) -> Iterator[tuple[str, Any, Any]]:
         yield from _pairs(name, getattr(source, name), value)
 
 
-def _pairs(name: str, source: Any, target: Any) -> Iterator[tuple[str, Any, Any]]:
+def _pairs(
+    name: str, source: Member, target: Member
+) -> Iterator[tuple[str, SignalLike, SignalLike]]:
     if isinstance(target, MessageInterface):
         yield from _members(source, target)
     elif isinstance(target, list):

@@ -11,16 +11,23 @@ subscriber can parse the next frame while its consumer still works on the last.
 
 from __future__ import annotations
 
-from typing import Any
-
 from myhdl import ConcatSignal, Signal, always_comb, always_seq, block, intbv
 
+from rfc.lib.types import Instances, SignalLike
 
+
+# Its skid-buffer moves recur in the guards and the manager's mux, on their own registers.
 @block
 def register_slice(
-    clk: Any, rst: Any, s_data: Any, s_valid: Any, s_ready: Any, m_data: Any, m_valid: Any,
-    m_ready: Any,
-) -> Any:  # fmt: skip
+    clk: SignalLike,
+    rst: SignalLike,
+    s_data: SignalLike,
+    s_valid: SignalLike,
+    s_ready: SignalLike,
+    m_data: SignalLike,
+    m_valid: SignalLike,
+    m_ready: SignalLike,
+) -> Instances:
     """Pass `s_data` to `m_data` under valid/ready, one message a cycle, all outputs registered."""
     width = len(s_data)
     held = Signal(intbv(0)[width:])
@@ -52,7 +59,7 @@ def register_slice(
 
 
 @block
-def slice_body(fields: tuple[tuple[str, int, bool], ...], **ports: Any) -> Any:
+def slice_body(fields: tuple[tuple[str, int, bool], ...], **ports: SignalLike) -> Instances:
     """`register_slice` over ports ``s_<field>`` → ``m_<field>`` and the two handshakes.
 
     Args:
@@ -80,11 +87,18 @@ def slice_body(fields: tuple[tuple[str, int, bool], ...], **ports: Any) -> Any:
     return core, outputs
 
 
+# Its ports recur in the manager's `routed_slice` and `slice_chain`, which wrap it.
 @block
 def parts_slice(
-    clk: Any, rst: Any, sources: list[Any], s_valid: Any, s_ready: Any, sinks: list[Any],
-    m_valid: Any, m_ready: Any,
-) -> Any:  # fmt: skip
+    clk: SignalLike,
+    rst: SignalLike,
+    sources: list[SignalLike],
+    s_valid: SignalLike,
+    s_ready: SignalLike,
+    sinks: list[SignalLike],
+    m_valid: SignalLike,
+    m_ready: SignalLike,
+) -> Instances:
     """`register_slice` over several signals at once (a stream's tdata, tkeep, tlast …).
 
     Args:
@@ -111,7 +125,7 @@ def parts_slice(
 
 
 @block
-def part_of(data: Any, low: int, width: int, single: bool, out: Any) -> Any:
+def part_of(data: SignalLike, low: int, width: int, single: bool, out: SignalLike) -> Instances:
     """Drive `out` with bits ``low`` … ``low + width - 1`` of `data`."""
     if single:
 

@@ -10,8 +10,6 @@ on each sub-stream and element channel, sized from the plan's maxima to hold one
 
 from __future__ import annotations
 
-from typing import Any
-
 from myhdl import ConcatSignal, Signal, always_comb, always_seq, block, intbv
 
 from rfc.lib.converters.buffer_sizes import DATA_ROLES, Buffer, buffers_of, element_ports
@@ -20,6 +18,7 @@ from rfc.lib.converters.ports import Port, Side, dma_ports, ports_of
 from rfc.lib.converters.publisher import rfc_publisher
 from rfc.lib.converters.steps import Payload, Plan
 from rfc.lib.converters.toplevel import port_signals
+from rfc.lib.types import Instances, SignalLike
 
 # the sizes are reexported: the system's lowering takes both from here
 __all__ = [
@@ -35,7 +34,7 @@ __all__ = [
 
 
 @block
-def split(word: Any, low: int, target: Any) -> Any:
+def split(word: SignalLike, low: int, target: SignalLike) -> Instances:
     """Drive `target` with the bits of `word` from `low` up."""
     high = low + len(target)
 
@@ -47,7 +46,7 @@ def split(word: Any, low: int, target: Any) -> Any:
 
 
 @block
-def split_bit(word: Any, low: int, target: Any) -> Any:
+def split_bit(word: SignalLike, low: int, target: SignalLike) -> Instances:
     """Drive the single-bit `target` with bit `low` of `word`."""
 
     @always_comb
@@ -57,10 +56,15 @@ def split_bit(word: Any, low: int, target: Any) -> Any:
     return extract
 
 
+# Port dictionaries, as `publisher_inputs` of the manager: a different block on the same shape.
 @block
 def stream_buffers(
-    plan: Plan, clk: Any, rst: Any, producer: dict[str, Any], publisher: dict[str, Any]
-) -> Any:
+    plan: Plan,
+    clk: SignalLike,
+    rst: SignalLike,
+    producer: dict[str, SignalLike],
+    publisher: dict[str, SignalLike],
+) -> Instances:
     """FIFOs from `producer`'s sub-streams and element channels to `publisher`'s.
 
     Both map the publisher's accelerator-side port names to signals.
@@ -103,9 +107,15 @@ def buffered_ports(plan: Plan) -> tuple[Port, ...]:
 
 @block
 def occupancy(
-    clk: Any, rst: Any, pushed: Any, in_ready: Any, popped: Any, out_ready: Any, empty: Any,
+    clk: SignalLike,
+    rst: SignalLike,
+    pushed: SignalLike,
+    in_ready: SignalLike,
+    popped: SignalLike,
+    out_ready: SignalLike,
+    empty: SignalLike,
     depth: int,
-) -> Any:  # fmt: skip
+) -> Instances:
     """`empty` while a FIFO of `depth` words holds nothing, counted from both handshakes.
 
     Exact on the cycle after a push, when the FIFO's own output shows nothing yet.
@@ -129,7 +139,7 @@ def occupancy(
 
 
 @block
-def buffered_publisher(plan: Plan, **ports: Any) -> Any:
+def buffered_publisher(plan: Plan, **ports: SignalLike) -> Instances:
     """The publisher of `plan` behind `stream_buffers`; `ports`: `buffered_ports`.
 
     Behind a record-first producer it also tells the publisher which of the message's own

@@ -8,9 +8,9 @@ from __future__ import annotations
 
 import re
 import warnings
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
 
 from myhdl import ToVerilogWarning, ToVHDLWarning
 
@@ -19,6 +19,7 @@ from rfc.lib.converters.publisher import publisher_ports, rfc_publisher
 from rfc.lib.converters.steps import Plan
 from rfc.lib.converters.subscriber import rfc_subscriber, subscriber_ports
 from rfc.lib.converters.toplevel import elaboration, port_signals, top_block
+from rfc.lib.types import Instances
 from rfc.toolchain import convert_myhdl
 
 
@@ -53,13 +54,13 @@ def entity_name(plan: Plan, side: Side) -> str:
     return f"{snake}_{side.value}"
 
 
-def subscriber_top(plan: Plan, name: str | None = None) -> Any:
+def subscriber_top(plan: Plan, name: str | None = None) -> Callable[..., Instances]:
     """The subscriber as a MyHDL top-level block; call it with `port_signals` of its ports."""
     name = name or entity_name(plan, Side.SUBSCRIBER)
     return top_block(name, subscriber_ports(plan), rfc_subscriber, plan=plan)
 
 
-def publisher_top(plan: Plan, name: str | None = None) -> Any:
+def publisher_top(plan: Plan, name: str | None = None) -> Callable[..., Instances]:
     """The publisher as a MyHDL top-level block; call it with `port_signals` of its ports."""
     name = name or entity_name(plan, Side.PUBLISHER)
     return top_block(name, publisher_ports(plan), rfc_publisher, plan=plan)

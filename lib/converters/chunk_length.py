@@ -13,11 +13,11 @@ prefix guard keeps it from then on).
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any
 
 from myhdl import Signal, always_comb, always_seq, block, intbv
 
-from rfc.lib.converters.ports import Direction, Port, PortRole
+from rfc.lib.converters.ports import Direction, Port, PortRole, stream_path_ports
+from rfc.lib.types import Instances, SignalLike
 
 #: Bytes of a chunk header, and where its fields sit (docs/protocol.md).
 HEADER_BYTES = 8
@@ -32,26 +32,14 @@ def length_port(subscriber: int) -> str:
 
 def dma_tap_ports(width: int, subscribers: Sequence[int]) -> list[Port]:
     """The tap's ports for a bus of `width` bytes serving `subscribers`, in declaration order."""
-    ports = [Port("clk", 1, Direction.IN, PortRole.CLOCK), Port("rst", 1, Direction.IN,
-             PortRole.RESET)]  # fmt: skip
-    for bus, out, into in (
-        ("s_axis", Direction.IN, Direction.OUT),
-        ("m_axis", Direction.OUT, Direction.IN),
-    ):
-        ports += [
-            Port(f"{bus}_tdata", 8 * width, out, PortRole.TDATA, bus),
-            Port(f"{bus}_tkeep", width, out, PortRole.TKEEP, bus),
-            Port(f"{bus}_tvalid", 1, out, PortRole.TVALID, bus),
-            Port(f"{bus}_tready", 1, into, PortRole.TREADY, bus),
-            Port(f"{bus}_tlast", 1, out, PortRole.TLAST, bus),
-        ]
-    return ports + [
+    return stream_path_ports(width) + [
         Port(length_port(s), LENGTH_BITS, Direction.OUT, PortRole.FIELD) for s in subscribers
     ]
 
 
+# Its `through` process is a plain wire; the guards' and the mux's look alike but select.
 @block
-def dma_tap(subscribers: Sequence[int], **ports: Any) -> Any:
+def dma_tap(subscribers: Sequence[int], **ports: SignalLike) -> Instances:
     """The DMA stream passed on, and each subscriber's declared length; `ports`: `dma_tap_ports`."""
     s_data, s_keep, s_valid, s_ready, s_last = (
         ports[f"s_axis_{n}"] for n in ("tdata", "tkeep", "tvalid", "tready", "tlast")
@@ -78,8 +66,15 @@ def dma_tap(subscribers: Sequence[int], **ports: Any) -> Any:
 
 @block
 def chunk_length(
-    clk: Any, rst: Any, ident: int, tdata: Any, tvalid: Any, tready: Any, tlast: Any, length: Any
-) -> Any:
+    clk: SignalLike,
+    rst: SignalLike,
+    ident: int,
+    tdata: SignalLike,
+    tvalid: SignalLike,
+    tready: SignalLike,
+    tlast: SignalLike,
+    length: SignalLike,
+) -> Instances:
     """Hold in `length` the length field of the last chunk header for subscriber `ident`.
 
     Every chunk starts with its header (after reset and after each ``tlast``); a header spans

@@ -7,25 +7,24 @@ multiplexer is involved, only a chunk-number compare, and one process serves the
 
 from __future__ import annotations
 
-from typing import Any
-
 from myhdl import always_seq, block
 
-from rfc.lib.converters.steps import Plan, Record, Slot, SlotRole
+from rfc.lib.converters.steps import Plan, Slot, SlotRole
 from rfc.lib.converters.tables import pieces, tables
+from rfc.lib.types import Instances, SignalLike
 
 
 @block
 def field_register(
-    clk: Any,
-    rst: Any,
-    fire: Any,
-    rc: Any,
-    data: Any,
+    clk: SignalLike,
+    rst: SignalLike,
+    fire: SignalLike,
+    rc: SignalLike,
+    data: SignalLike,
     chunks: tuple[int, ...],
     lanes: tuple[int, ...],
-    target: Any,
-) -> Any:
+    target: SignalLike,
+) -> Instances:
     """Capture byte ``b`` of `target` from lane ``lanes[b]`` of `data` at chunk ``chunks[b]``."""
     size = len(chunks)
 
@@ -43,8 +42,16 @@ def field_register(
 
 
 @block
-def bool_register(clk: Any, rst: Any, fire: Any, rc: Any, data: Any, at: int, lane: int,
-                  target: Any) -> Any:  # fmt: skip
+def bool_register(
+    clk: SignalLike,
+    rst: SignalLike,
+    fire: SignalLike,
+    rc: SignalLike,
+    data: SignalLike,
+    at: int,
+    lane: int,
+    target: SignalLike,
+) -> Instances:
     """Capture a bool: whether the byte on `lane` of chunk `at` is not zero."""
     low = 8 * lane
 
@@ -65,8 +72,16 @@ def _byte_sources(slot: Slot, base: int, width: int) -> tuple[tuple[int, ...], t
 
 
 @block
-def field_captures(plan: Plan, ports: dict[str, Any], clk: Any, rst: Any, fire: Any, rc: Any,
-                   data: Any, header: Any) -> Any:  # fmt: skip
+def field_captures(
+    plan: Plan,
+    ports: dict[str, SignalLike],
+    clk: SignalLike,
+    rst: SignalLike,
+    fire: SignalLike,
+    rc: SignalLike,
+    data: SignalLike,
+    header: SignalLike,
+) -> Instances:
     """Capture every selected field of the plan, and the CDR header's first two bytes.
 
     Args:
@@ -81,9 +96,7 @@ def field_captures(plan: Plan, ports: dict[str, Any], clk: Any, rst: Any, fire: 
     """
     t = tables(plan)
     registers = []
-    for pc, step in enumerate(plan.steps):
-        if not isinstance(step, Record):
-            continue
+    for pc, step in plan.records():
         for slot in step.slots:
             if slot.role is SlotRole.ENCAPSULATION:
                 target = header

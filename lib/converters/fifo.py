@@ -7,25 +7,24 @@ flowing under a continuous `out_ready`.
 
 from __future__ import annotations
 
-from typing import Any
-
 from myhdl import Signal, always_comb, always_seq, block, intbv
 
 from rfc.lib.converters.ram import ram
+from rfc.lib.types import Instances, SignalLike
 
 
 @block
 def fifo(
-    clk: Any,
-    rst: Any,
-    in_data: Any,
-    in_valid: Any,
-    in_ready: Any,
-    out_data: Any,
-    out_valid: Any,
-    out_ready: Any,
+    clk: SignalLike,
+    rst: SignalLike,
+    in_data: SignalLike,
+    in_valid: SignalLike,
+    in_ready: SignalLike,
+    out_data: SignalLike,
+    out_valid: SignalLike,
+    out_ready: SignalLike,
     depth: int,
-) -> Any:
+) -> Instances:
     """Hold `depth` + 1 words of `len(in_data)` bits; a word written shows two cycles later."""
     depth = max(depth, 2)  # an address needs a bit
     width = len(in_data)

@@ -8,31 +8,30 @@ buffer is dropped at commit and counted in `errors`.
 
 from __future__ import annotations
 
-from typing import Any
-
 from myhdl import Signal, always_comb, always_seq, block, intbv
 
 from rfc.lib.converters.ports import COUNTER_BITS
+from rfc.lib.types import Instances, SignalLike
 
 
 @block
 def frame_buffer(
-    clk: Any,
-    rst: Any,
-    w_data: Any,
-    w_valid: Any,
-    commit: Any,
-    length: Any,
-    busy: Any,
-    errors: Any,
-    tdata: Any,
-    tkeep: Any,
-    tvalid: Any,
-    tready: Any,
-    tlast: Any,
+    clk: SignalLike,
+    rst: SignalLike,
+    w_data: SignalLike,
+    w_valid: SignalLike,
+    commit: SignalLike,
+    length: SignalLike,
+    busy: SignalLike,
+    errors: SignalLike,
+    tdata: SignalLike,
+    tkeep: SignalLike,
+    tvalid: SignalLike,
+    tready: SignalLike,
+    tlast: SignalLike,
     width: int,
     depth: int,
-) -> Any:
+) -> Instances:
     """Buffer one frame of up to `depth` beats of `width` bytes.
 
     Args:

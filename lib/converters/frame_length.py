@@ -15,12 +15,12 @@ element is one fixed-size record (so that every element has the same stride).
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
 
 from myhdl import Constant, Signal, always_comb, block, intbv
 
 from rfc.lib.converters.ports import count_bits
 from rfc.lib.converters.steps import Loop, Payload, Plan, Record
+from rfc.lib.types import Instances, SignalLike
 
 
 @dataclass(frozen=True)
@@ -114,7 +114,9 @@ def length_formula(plan: Plan) -> LengthFormula:
 
 
 @block
-def record_stage(gap_in: Any, gap_out: Any, pad: Any, align: int, size: int) -> Any:
+def record_stage(
+    gap_in: SignalLike, gap_out: SignalLike, pad: SignalLike, align: int, size: int
+) -> Instances:
     """Padding before a record that starts at run-time positions, and the gap after it."""
     mask = align - 1
 
@@ -129,7 +131,14 @@ def record_stage(gap_in: Any, gap_out: Any, pad: Any, align: int, size: int) -> 
 
 
 @block
-def counted_stage(count: Any, gap_in: Any, gap_out: Any, pad: Any, term: Any, stage: Stage) -> Any:
+def counted_stage(
+    count: SignalLike,
+    gap_in: SignalLike,
+    gap_out: SignalLike,
+    pad: SignalLike,
+    term: SignalLike,
+    stage: Stage,
+) -> Instances:
     """Bytes and padding of a string or sequence, and the gap after it."""
     mask = stage.align - 1
     scale, fixed, sequence = stage.scale, stage.fixed, stage.sequence
@@ -168,7 +177,7 @@ def counted_stage(count: Any, gap_in: Any, gap_out: Any, pad: Any, term: Any, st
 
 
 @block
-def accumulate(total_in: Any, term: Any, total_out: Any) -> Any:
+def accumulate(total_in: SignalLike, term: SignalLike, total_out: SignalLike) -> Instances:
     """One adder of the chain that sums the terms."""
 
     @always_comb
@@ -179,7 +188,9 @@ def accumulate(total_in: Any, term: Any, total_out: Any) -> Any:
 
 
 @block
-def frame_length_circuit(plan: Plan, counts: dict[str, Any], length: Any) -> Any:
+def frame_length_circuit(
+    plan: Plan, counts: dict[str, SignalLike], length: SignalLike
+) -> Instances:
     """Combinational frame length of `plan` from its top-level length and count inputs.
 
     Args:
@@ -212,7 +223,7 @@ def frame_length_circuit(plan: Plan, counts: dict[str, Any], length: Any) -> Any
         gap = after
     # Narrow terms first, each partial sum only as wide as it can get.
     largest = constant
-    total: Any = Constant(intbv(constant)[max(1, constant.bit_length()) :])
+    total: SignalLike = Constant(intbv(constant)[max(1, constant.bit_length()) :])
     for term in sorted(terms, key=len):
         largest += term.max - 1
         following = Signal(intbv(0)[max(1, largest.bit_length()) :])

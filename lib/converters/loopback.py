@@ -9,8 +9,6 @@ elements over while it parses, before its record. The entity, ``rfc_loopback``, 
 
 from __future__ import annotations
 
-from typing import Any
-
 from myhdl import Signal, block, intbv
 
 from rfc.lib.converters.buffers import DATA_ROLES, stream_buffers
@@ -22,12 +20,14 @@ from rfc.lib.converters.ports import (
     PortRole,
     Side,
     ports_of,
+    stream_path_ports,
 )
 from rfc.lib.converters.publisher import rfc_publisher
 from rfc.lib.converters.steps import ROOT, Plan
 from rfc.lib.converters.subscriber import rfc_subscriber
 from rfc.lib.converters.toplevel import port_signals
 from rfc.lib.converters.wiring import follow
+from rfc.lib.types import Instances, SignalLike
 
 #: Entity name of every loopback (the testbench instantiates it by that name).
 LOOPBACK = "rfc_loopback"
@@ -35,31 +35,16 @@ LOOPBACK = "rfc_loopback"
 
 def loopback_ports(width: int) -> tuple[Port, ...]:
     """The loopback's ports: the subscriber's AXI-Stream in, the publisher's out, status."""
-    ports = [
-        Port("clk", 1, Direction.IN, PortRole.CLOCK),
-        Port("rst", 1, Direction.IN, PortRole.RESET),
-    ]
-    for bus, into, out in (
-        ("s_axis", Direction.IN, Direction.OUT),
-        ("m_axis", Direction.OUT, Direction.IN),
-    ):
-        ports += [
-            Port(f"{bus}_tdata", 8 * width, into, PortRole.TDATA, bus),
-            Port(f"{bus}_tkeep", width, into, PortRole.TKEEP, bus),
-            Port(f"{bus}_tvalid", 1, into, PortRole.TVALID, bus),
-            Port(f"{bus}_tready", 1, out, PortRole.TREADY, bus),
-            Port(f"{bus}_tlast", 1, into, PortRole.TLAST, bus),
-        ]
-    ports += [
+    return (
+        *stream_path_ports(width),
         Port("frame_length", COUNTER_BITS, Direction.OUT, PortRole.FRAME_LENGTH),
         Port("error_count", COUNTER_BITS, Direction.OUT, PortRole.ERROR_COUNT),
         Port("fields_valid", 1, Direction.OUT, PortRole.VALID),
-    ]
-    return tuple(ports)
+    )
 
 
 @block
-def rfc_loopback(plan: Plan, **ports: Any) -> Any:
+def rfc_loopback(plan: Plan, **ports: SignalLike) -> Instances:
     """The subscriber and publisher of `plan`, wired through FIFOs; `ports`: `loopback_ports`."""
     clk, rst = ports["clk"], ports["rst"]
     sub = port_signals(ports_of(plan, Side.SUBSCRIBER))

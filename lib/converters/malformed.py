@@ -11,11 +11,11 @@ strings or sequences gets a frame guard in front instead (`rfc.lib.converters.gu
 from __future__ import annotations
 
 from enum import IntEnum
-from typing import Any
 
 from myhdl import Signal, always_comb, always_seq, block, intbv
 
 from rfc.lib.converters.ports import COUNTER_BITS, REASON_BITS, Direction, Port, PortRole
+from rfc.lib.types import Instances, SignalLike
 
 
 class Reason(IntEnum):
@@ -69,8 +69,14 @@ def gate_ports() -> list[Port]:
 
 @block
 def reason_counter(
-    clk: Any, rst: Any, s_valid: Any, s_error: Any, s_reason: Any, count: Any, code: int
-) -> Any:
+    clk: SignalLike,
+    rst: SignalLike,
+    s_valid: SignalLike,
+    s_error: SignalLike,
+    s_reason: SignalLike,
+    count: SignalLike,
+    code: int,
+) -> Instances:
     """Count the rejected records whose reason is `code` into `count`."""
     tally = Signal(intbv(0)[len(count) :])
 
@@ -87,7 +93,7 @@ def reason_counter(
 
 
 @block
-def drop_gate(**ports: Any) -> Any:
+def drop_gate(**ports: SignalLike) -> Instances:
     """Pass valid records on; take rejected ones here and count them by reason.
 
     `ports` holds one signal per name of `gate_ports`. The gate adds no cycle: a valid record's

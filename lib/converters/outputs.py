@@ -9,17 +9,24 @@ only while the register holds one of its beats.
 
 from __future__ import annotations
 
-from typing import Any
-
 from myhdl import always_comb, always_seq, block
 
 from rfc.lib.converters.steps import Loop, Payload, Plan
 from rfc.lib.converters.tables import tables
 from rfc.lib.converters.wiring import bits_of, follow, index_bit
+from rfc.lib.types import Instances, SignalLike
 
 
 @block
-def length_register(clk: Any, rst: Any, fire: Any, pc: Any, at: int, value: Any, port: Any) -> Any:
+def length_register(
+    clk: SignalLike,
+    rst: SignalLike,
+    fire: SignalLike,
+    pc: SignalLike,
+    at: int,
+    value: SignalLike,
+    port: SignalLike,
+) -> Instances:
     """Write `value` to `port` when step `at` begins (`fire`)."""
 
     @always_seq(clk.posedge, reset=rst)
@@ -30,9 +37,17 @@ def length_register(clk: Any, rst: Any, fire: Any, pc: Any, at: int, value: Any,
     return write
 
 
+# A plan, its ports and the control's signals, as every part of a converter takes them.
 @block
-def length_registers(plan: Plan, ports: dict[str, Any], clk: Any, rst: Any, fire: Any, pc: Any,
-                     value: Any) -> Any:  # fmt: skip
+def length_registers(
+    plan: Plan,
+    ports: dict[str, SignalLike],
+    clk: SignalLike,
+    rst: SignalLike,
+    fire: SignalLike,
+    pc: SignalLike,
+    value: SignalLike,
+) -> Instances:
     """One `length_register` per selected string or sequence."""
     blocks = []
     for at, step in enumerate(plan.steps):
@@ -47,7 +62,14 @@ def length_registers(plan: Plan, ports: dict[str, Any], clk: Any, rst: Any, fire
 
 
 @block
-def element_handshake(pc: Any, at: int, busy: Any, counter: Any, valid: Any, last: Any) -> Any:
+def element_handshake(
+    pc: SignalLike,
+    at: int,
+    busy: SignalLike,
+    counter: SignalLike,
+    valid: SignalLike,
+    last: SignalLike,
+) -> Instances:
     """An element is valid while the parser waits at its Next step (`at`), streams sent."""
 
     @always_comb
@@ -58,9 +80,15 @@ def element_handshake(pc: Any, at: int, busy: Any, counter: Any, valid: Any, las
     return status
 
 
+# A plan, its ports and the control's signals, as every part of a converter takes them.
 @block
-def element_handshakes(plan: Plan, ports: dict[str, Any], pc: Any, busy: Any, counters: list[Any]
-                       ) -> Any:  # fmt: skip
+def element_handshakes(
+    plan: Plan,
+    ports: dict[str, SignalLike],
+    pc: SignalLike,
+    busy: SignalLike,
+    counters: list[SignalLike],
+) -> Instances:
     """One `element_handshake` per selected element channel."""
     loops = [step for step in plan.steps if isinstance(step, Loop)]
     blocks = []
@@ -73,8 +101,18 @@ def element_handshakes(plan: Plan, ports: dict[str, Any], pc: Any, busy: Any, co
 
 
 @block
-def stream_port(o_data: Any, o_keep: Any, o_last: Any, o_valid: Any, o_stream: Any, index: int,
-                tdata: Any, tkeep: Any, tvalid: Any, tlast: Any) -> Any:  # fmt: skip
+def stream_port(
+    o_data: SignalLike,
+    o_keep: SignalLike,
+    o_last: SignalLike,
+    o_valid: SignalLike,
+    o_stream: SignalLike,
+    index: int,
+    tdata: SignalLike,
+    tkeep: SignalLike,
+    tvalid: SignalLike,
+    tlast: SignalLike,
+) -> Instances:
     """The ports of sub-stream `index`, driven from the shared output register."""
 
     @always_comb
@@ -88,13 +126,21 @@ def stream_port(o_data: Any, o_keep: Any, o_last: Any, o_valid: Any, o_stream: A
 
 
 @block
-def stream_outputs(plan: Plan, ports: dict[str, Any], o_data: Any, o_keep: Any, o_last: Any,
-                   o_valid: Any, o_stream: Any, o_ready: Any) -> Any:  # fmt: skip
+def stream_outputs(
+    plan: Plan,
+    ports: dict[str, SignalLike],
+    o_data: SignalLike,
+    o_keep: SignalLike,
+    o_last: SignalLike,
+    o_valid: SignalLike,
+    o_stream: SignalLike,
+    o_ready: SignalLike,
+) -> Instances:
     """Every sub-stream's ports; `o_ready` is the ready of the stream the register serves."""
     blocks = []
     readies = []
     for index, at in enumerate(tables(plan).streams):
-        name = plan.steps[at].stream
+        name = plan.payload(at).stream
         blocks.append(
             stream_port(
                 o_data,

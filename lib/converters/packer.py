@@ -14,31 +14,31 @@ end, starts with the largest length and sends the rest on `flush`.
 
 from __future__ import annotations
 
-from typing import Any
-
 from myhdl import Signal, always_comb, always_seq, block, intbv
 
 from rfc.lib.converters.ports import COUNTER_BITS
+from rfc.lib.types import Instances, SignalLike
 
 
+# AXI-Stream out as `frame_buffer`'s, which it feeds: each block names its own ports.
 @block
 def byte_packer(
-    clk: Any,
-    rst: Any,
-    give: Any,
-    data: Any,
-    room: Any,
-    start: Any,
-    length: Any,
-    flush: Any,
-    idle: Any,
-    tdata: Any,
-    tkeep: Any,
-    tvalid: Any,
-    tready: Any,
-    tlast: Any,
+    clk: SignalLike,
+    rst: SignalLike,
+    give: SignalLike,
+    data: SignalLike,
+    room: SignalLike,
+    start: SignalLike,
+    length: SignalLike,
+    flush: SignalLike,
+    idle: SignalLike,
+    tdata: SignalLike,
+    tkeep: SignalLike,
+    tvalid: SignalLike,
+    tready: SignalLike,
+    tlast: SignalLike,
     width: int,
-) -> Any:
+) -> Instances:
     """Pack bytes into beats of `width` bytes.
 
     Args:

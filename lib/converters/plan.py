@@ -157,14 +157,15 @@ class _Builder:
         self.channels.append(Channel(element_channel, name, path, channel, leaf.selected))
         start = len(self.steps)
         count_port = f"{name}_length" if leaf.selected else None
-        self.steps.append(Loop(leaf, path, channel, element_channel, maximum, count_port, -1))
+        loop = Loop(leaf, path, channel, element_channel, maximum, count_port, -1)
+        self.steps.append(loop)
         if leaf.element is not None:
             self.walk(leaf.element, element_channel, name + "_", path + ".")
         else:
             self.string_element(leaf, path, element_channel, name)
         self.close()
         self.steps.append(Next(start, element_channel))
-        self.steps[start] = replace(self.steps[start], next=len(self.steps) - 1)
+        self.steps[start] = replace(loop, next=len(self.steps) - 1)
 
     def string_element(self, leaf: LayoutField, path: str, channel: int, name: str) -> None:
         """One string of a sequence of strings: its length prefix, then its characters."""

@@ -267,24 +267,42 @@ def _path(plan: Plan, channel: int, leaf_path: str) -> str:
     return f"{sequence}.{leaf_path}" if sequence else leaf_path
 
 
-def dma_ports(plan: Plan, side: Side) -> tuple[Port, ...]:
-    """List clock, reset and the DMA-side ports (AXI-Stream, counters, frame length)."""
-    width = plan.width
-    ports = [
+def clock_ports() -> list[Port]:
+    """Clock and synchronous reset, the first ports of every entity rfc generates."""
+    return [
         Port("clk", 1, Direction.IN, PortRole.CLOCK),
         Port("rst", 1, Direction.IN, PortRole.RESET),
     ]
-    if side is Side.SUBSCRIBER:
-        bus, out, into = "s_axis", Direction.IN, Direction.OUT
-    else:
-        bus, out, into = "m_axis", Direction.OUT, Direction.IN
-    ports += [
-        Port(f"{bus}_tdata", 8 * width, out, PortRole.TDATA, bus),
-        Port(f"{bus}_tkeep", width, out, PortRole.TKEEP, bus),
-        Port(f"{bus}_tvalid", 1, out, PortRole.TVALID, bus),
-        Port(f"{bus}_tready", 1, into, PortRole.TREADY, bus),
-        Port(f"{bus}_tlast", 1, out, PortRole.TLAST, bus),
+
+
+def axis_ports(bus: str, width: int, data: Direction) -> list[Port]:
+    """The five ports of AXI-Stream `bus` of `width` bytes; `data` is its data's direction."""
+    back = Direction.OUT if data is Direction.IN else Direction.IN
+    return [
+        Port(f"{bus}_tdata", 8 * width, data, PortRole.TDATA, bus),
+        Port(f"{bus}_tkeep", width, data, PortRole.TKEEP, bus),
+        Port(f"{bus}_tvalid", 1, data, PortRole.TVALID, bus),
+        Port(f"{bus}_tready", 1, back, PortRole.TREADY, bus),
+        Port(f"{bus}_tlast", 1, data, PortRole.TLAST, bus),
     ]
+
+
+def stream_path_ports(width: int) -> list[Port]:
+    """Clock, reset, a stream in (``s_axis``) and one out (``m_axis``): a block in a path."""
+    return [
+        *clock_ports(),
+        *axis_ports("s_axis", width, Direction.IN),
+        *axis_ports("m_axis", width, Direction.OUT),
+    ]
+
+
+def dma_ports(plan: Plan, side: Side) -> tuple[Port, ...]:
+    """List clock, reset and the DMA-side ports (AXI-Stream, counters, frame length)."""
+    ports = clock_ports()
+    if side is Side.SUBSCRIBER:
+        ports += axis_ports("s_axis", plan.width, Direction.IN)
+    else:
+        ports += axis_ports("m_axis", plan.width, Direction.OUT)
     if side is Side.PUBLISHER:
         ports.append(Port("frame_length", COUNTER_BITS, Direction.OUT, PortRole.FRAME_LENGTH))
     if side is Side.SUBSCRIBER or plan.store_and_forward or plan.streamed_last is not None:

@@ -23,8 +23,6 @@ finished) and a FIFO is empty while its stream still owes beats.
 
 from __future__ import annotations
 
-from typing import Any
-
 from myhdl import ConcatSignal, Constant, Signal, always_comb, always_seq, block, intbv
 
 from rfc.lib.converters.frame_buffer import frame_buffer
@@ -36,6 +34,7 @@ from rfc.lib.converters.steps import End, Loop, Next, Payload, Plan, Record
 from rfc.lib.converters.tables import Kind, tables
 from rfc.lib.converters.wiring import bits_of, follow, loop_counters, select_bit
 from rfc.lib.slice import register_slice
+from rfc.lib.types import Instances, SignalLike
 from rfc.messages.codec import default_values, encode
 
 
@@ -75,7 +74,9 @@ def _length_inputs(plan: Plan) -> tuple[list[str], tuple[int, ...]]:
 
 
 @block
-def rfc_publisher(plan: Plan, held: dict[str, Any] | None = None, **ports: Any) -> Any:
+def rfc_publisher(
+    plan: Plan, held: dict[str, SignalLike] | None = None, **ports: SignalLike
+) -> Instances:
     """The publisher for `plan`; `ports` holds one signal per name of `publisher_ports`.
 
     `held`: behind a record-first producer, per stream that comes through a FIFO, a signal
@@ -142,8 +143,8 @@ def rfc_publisher(plan: Plan, held: dict[str, Any] | None = None, **ports: Any) 
     skid = []
     pending = Constant(bool(0))  # a beat of the streamed-through stream waits at the port
     through_valid = Constant(bool(0))  # a beat of it waits at the port or in the skid
-    if streaming:
-        ends = [f"{plan.steps[through].stream}_{end}" for end in ("tdata", "tvalid", "tready")]
+    if through is not None:
+        ends = [f"{plan.payload(through).stream}_{end}" for end in ("tdata", "tvalid", "tready")]
         outer = [ports[name] for name in ends]
         inner = [Signal(intbv(0)[len(outer[0]) :]), Signal(bool(0)), Signal(bool(0))]
         pending, through_valid = outer[1], Signal(bool(0))
@@ -172,13 +173,14 @@ def rfc_publisher(plan: Plan, held: dict[str, Any] | None = None, **ports: Any) 
         if length_names
         else lengths[0]
     )
-    streams = [plan.steps[at] for at in t.streams]
+    streams = [plan.payload(at) for at in t.streams]
     stream_valid = Signal(bool(0)) if streams else Constant(bool(0))
     stream_take = Signal(bool(0))
-    loop_counts = [Signal(intbv(0)[count_bits(plan.steps[at].maximum) :]) for at in t.loops]
+    loop_counts = [Signal(intbv(0)[count_bits(plan.loop(at).maximum) :]) for at in t.loops]
     loop_more = [Signal(bool(0)) for _ in t.loops]
     more = Signal(bool(0)) if t.loops else Constant(bool(0))
 
+    # Reads the step ROMs as the subscriber's `control` does; a MyHDL process converts whole.
     @always_comb
     def control() -> None:
         kind = kind_rom[pc]
@@ -384,8 +386,11 @@ def rfc_publisher(plan: Plan, held: dict[str, Any] | None = None, **ports: Any) 
     m_axis = [ports[f"m_axis_{name}"] for name in ("tdata", "tkeep", "tvalid", "tready", "tlast")]
     if not buffered:
         blocks.append(
-            byte_packer(clk, rst, give, data, room, start, frame_total, flush, idle, *m_axis, width)
-        )
+            byte_packer(
+                clk, rst, give, data, room, start, frame_total, flush, idle,
+                m_axis[0], m_axis[1], m_axis[2], m_axis[3], m_axis[4], width,
+            )
+        )  # fmt: skip
         return blocks
     largest = Constant(intbv(2**COUNTER_BITS - 1)[COUNTER_BITS:])
     packed = (p_data, p_keep, p_valid, p_ready, p_last)
@@ -396,14 +401,21 @@ def rfc_publisher(plan: Plan, held: dict[str, Any] | None = None, **ports: Any) 
     errors = ports["error_count"]
     blocks.append(
         frame_buffer(
-            clk, rst, p_data, p_valid, commit, written, busy, errors, *m_axis, width, depth
+            clk, rst, p_data, p_valid, commit, written, busy, errors,
+            m_axis[0], m_axis[1], m_axis[2], m_axis[3], m_axis[4], width, depth,
         )
-    )
+    )  # fmt: skip
     return blocks
 
 
 @block
-def skid_through(clk: Any, rst: Any, outer: list[Any], inner: list[Any], waiting: Any) -> Any:
+def skid_through(
+    clk: SignalLike,
+    rst: SignalLike,
+    outer: list[SignalLike],
+    inner: list[SignalLike],
+    waiting: SignalLike,
+) -> Instances:
     """A register slice from the streamed-through stream's port to the publisher's side of it.
 
     Its ``tready`` then comes from a flip-flop, so no path runs from the publisher's frame
@@ -421,7 +433,7 @@ def skid_through(clk: Any, rst: Any, outer: list[Any], inner: list[Any], waiting
     return register_slice(clk, rst, *outer, *inner), either
 
 
-def _widened(signal: Any) -> list[Any]:
+def _widened(signal: SignalLike) -> list[SignalLike]:
     """A length input zero-extended to 32 bits: parts of the (flat) bus the control reads."""
     if len(signal) >= 32:
         return [signal]
@@ -429,7 +441,9 @@ def _widened(signal: Any) -> list[Any]:
 
 
 @block
-def channel_ready(next_element: Any, pc: Any, at: int, ready: Any) -> Any:
+def channel_ready(
+    next_element: SignalLike, pc: SignalLike, at: int, ready: SignalLike
+) -> Instances:
     """Acknowledge an element when its Next step (`at`) is done."""
 
     @always_comb
@@ -440,7 +454,9 @@ def channel_ready(next_element: Any, pc: Any, at: int, ready: Any) -> Any:
 
 
 @block
-def channel_readies(plan: Plan, ports: dict[str, Any], pc: Any, next_element: Any) -> Any:
+def channel_readies(
+    plan: Plan, ports: dict[str, SignalLike], pc: SignalLike, next_element: SignalLike
+) -> Instances:
     """One `channel_ready` per selected element channel."""
     blocks = []
     for at, step in enumerate(plan.steps):
@@ -451,7 +467,7 @@ def channel_readies(plan: Plan, ports: dict[str, Any], pc: Any, next_element: An
 
 
 @block
-def stream_ready(take: Any, pc: Any, at: int, ready: Any) -> Any:
+def stream_ready(take: SignalLike, pc: SignalLike, at: int, ready: SignalLike) -> Instances:
     """Take a sub-stream beat when the payload step `at` has used all of it."""
 
     @always_comb
@@ -462,7 +478,7 @@ def stream_ready(take: Any, pc: Any, at: int, ready: Any) -> Any:
 
 
 @block
-def anything_left(empties: Any, left: Any) -> Any:
+def anything_left(empties: SignalLike, left: SignalLike) -> Instances:
     """`left` while any of the FIFOs whose `empties` bits these are holds a beat."""
     full = 2 ** len(empties) - 1
 
@@ -474,7 +490,9 @@ def anything_left(empties: Any, left: Any) -> Any:
 
 
 @block
-def draining_ready(take: Any, pc: Any, at: int, drain: Any, ready: Any) -> Any:
+def draining_ready(
+    take: SignalLike, pc: SignalLike, at: int, drain: SignalLike, ready: SignalLike
+) -> Instances:
     """`stream_ready`, and every beat while `drain`: the streamed-through stream's extra beats."""
 
     @always_comb
@@ -484,23 +502,29 @@ def draining_ready(take: Any, pc: Any, at: int, drain: Any, ready: Any) -> Any:
     return acknowledge
 
 
+# A plan, its ports and the control's signals, as every part of a converter takes them.
 @block
 def stream_handshakes(
-    plan: Plan, ports: dict[str, Any], pc: Any, take: Any, valid: Any, drain: Any
-) -> Any:
+    plan: Plan,
+    ports: dict[str, SignalLike],
+    pc: SignalLike,
+    take: SignalLike,
+    valid: SignalLike,
+    drain: SignalLike,
+) -> Instances:
     """Sub-stream readies, and `valid`: the tvalid of the current step's sub-stream."""
     t = tables(plan)
     blocks = []
     valids = []
     table = [0] * len(plan.steps)
     for index, at in enumerate(t.streams):
-        name = plan.steps[at].stream
-        ready = ports[f"{name}_tready"]
-        if plan.streamed_last is not None and plan.steps[at].channel == 0:
+        stream = plan.payload(at)
+        ready = ports[f"{stream.stream}_tready"]
+        if plan.streamed_last is not None and stream.channel == 0:
             blocks.append(draining_ready(take, pc, at, drain, ready))
         else:
             blocks.append(stream_ready(take, pc, at, ready))
-        valids.append(ports[f"{name}_tvalid"])
+        valids.append(ports[f"{stream.stream}_tvalid"])
         table[at] = index
     if len(valids) > 1:
         blocks.append(select_bit(bits_of(valids), tuple(table), pc, valid))

@@ -9,22 +9,22 @@ usual ``reg`` array. MyHDL's simulator runs the Python body, which keeps only th
 
 from __future__ import annotations
 
-from typing import Any
-
 from myhdl import always, block
+
+from rfc.lib.types import Instances, SignalLike
 
 
 @block
 def ram(
-    clk: Any,
-    w_enable: Any,
-    w_address: Any,
-    w_data: Any,
-    r_enable: Any,
-    r_address: Any,
-    r_data: Any,
+    clk: SignalLike,
+    w_enable: SignalLike,
+    w_address: SignalLike,
+    w_data: SignalLike,
+    r_enable: SignalLike,
+    r_address: SignalLike,
+    r_data: SignalLike,
     depth: int,
-) -> Any:
+) -> Instances:
     """`depth` words of `len(w_data)` bits; `r_data` shows word `r_address` after `r_enable`.
 
     A read of the address written in the same cycle returns the old word (read-first). The

@@ -9,19 +9,20 @@ way with the sub-streams' data inputs, indexed by stream and piece.
 
 from __future__ import annotations
 
-from typing import Any
-
 from myhdl import ConcatSignal, Constant, Signal, always_comb, block, intbv
 
-from rfc.lib.converters.steps import Payload, Plan, Record, SlotRole
+from rfc.lib.converters.steps import Loop, Payload, Plan, SlotRole, Step
 from rfc.lib.converters.tables import pieces, tables
+from rfc.lib.types import Instances, SignalLike
 
 #: The four bytes of a little-endian plain-CDR encapsulation header.
 CDR_HEADER = (0x00, 0x01, 0x00, 0x00)
 
 
 @block
-def lane_select(bus: Any, table: tuple[int, ...], index: Any, out: Any) -> Any:
+def lane_select(
+    bus: SignalLike, table: tuple[int, ...], index: SignalLike, out: SignalLike
+) -> Instances:
     """Drive `out` with byte ``table[index]`` of `bus`."""
 
     @always_comb
@@ -33,8 +34,9 @@ def lane_select(bus: Any, table: tuple[int, ...], index: Any, out: Any) -> Any:
     return select
 
 
+# Adds a constant, unlike `frame_length.accumulate`: MyHDL writes it into the VHDL.
 @block
-def prefix_value(length: Any, terminator: int, prefix: Any) -> Any:
+def prefix_value(length: SignalLike, terminator: int, prefix: SignalLike) -> Instances:
     """The uint32 a length prefix carries: the count, plus the NUL for a CDR string."""
 
     @always_comb
@@ -44,7 +46,7 @@ def prefix_value(length: Any, terminator: int, prefix: Any) -> Any:
     return add
 
 
-def _byte(source: Any, index: int) -> list[Any]:
+def _byte(source: SignalLike, index: int) -> list[SignalLike]:
     """Byte `index` of a signal as parts of a `ConcatSignal`, high first (a bool: 0 or 1).
 
     Parts are signals, slices and constants only: MyHDL converts a `ConcatSignal` nested in
@@ -56,18 +58,18 @@ def _byte(source: Any, index: int) -> list[Any]:
 
 
 @block
-def record_sources(plan: Plan, ports: dict[str, Any], rc: Any, lanes: list[Any]) -> Any:
+def record_sources(
+    plan: Plan, ports: dict[str, SignalLike], rc: SignalLike, lanes: list[SignalLike]
+) -> Instances:
     """Drive ``lanes[j]`` with the byte record chunk `rc` sends on lane j."""
     t = tables(plan)
     width = plan.width
-    entries: list[list[Any]] = [[] for _ in range(width)]
+    entries: list[list[SignalLike]] = [[] for _ in range(width)]
     table = [[0] * t.record_chunks for _ in range(width)]
     zero = [intbv(0)[8:]]
     header = [[intbv(value)[8:]] for value in CDR_HEADER]
     blocks = []
-    for pc, step in enumerate(plan.steps):
-        if not isinstance(step, Record):
-            continue
+    for pc, step in plan.records():
         for slot in step.slots:
             if slot.role is SlotRole.ENCAPSULATION:
                 value = None
@@ -97,15 +99,16 @@ def record_sources(plan: Plan, ports: dict[str, Any], rc: Any, lanes: list[Any])
     return blocks
 
 
-def _prefixed(step: Any) -> tuple[str | None, int]:
+def _prefixed(step: Step) -> tuple[str | None, int]:
     """The length or count port of the step a length prefix announces, and its terminator."""
     if isinstance(step, Payload):
         return step.length_port, int(step.terminator)
+    assert isinstance(step, Loop), "a length prefix announces a string or a sequence"
     return step.count_port, 0
 
 
 @block
-def lane_pick(bus: Any, index: Any, out: Any) -> Any:
+def lane_pick(bus: SignalLike, index: SignalLike, out: SignalLike) -> Instances:
     """Drive `out` with byte `index` of `bus`."""
 
     @always_comb
@@ -128,7 +131,9 @@ def payload_bases(plan: Plan) -> tuple[int, ...]:
 
 
 @block
-def payload_sources(plan: Plan, ports: dict[str, Any], index: Any, lanes: list[Any]) -> Any:
+def payload_sources(
+    plan: Plan, ports: dict[str, SignalLike], index: SignalLike, lanes: list[SignalLike]
+) -> Instances:
     """Drive ``lanes[j]`` with byte j of piece `index` of the sub-stream inputs' data.
 
     Piece ``payload_bases(plan)[pc] + k`` is bytes ``k*W .. k*W+W-1`` of the data input of
@@ -136,7 +141,7 @@ def payload_sources(plan: Plan, ports: dict[str, Any], index: Any, lanes: list[A
     """
     t = tables(plan)
     width = plan.width
-    entries: list[list[Any]] = [[intbv(0)[8:]] for _ in range(width)]
+    entries: list[list[SignalLike]] = [[intbv(0)[8:]] for _ in range(width)]
     for pc in t.streams:
         step = plan.steps[pc]
         assert isinstance(step, Payload)

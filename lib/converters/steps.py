@@ -232,6 +232,18 @@ class Plan:
             return None
         return at
 
+    def payload(self, at: int) -> Payload:
+        """The step at `at`, which the caller knows is a `Payload` (a sub-stream's step)."""
+        step = self.steps[at]
+        assert isinstance(step, Payload), f"step {at} is a {type(step).__name__}, not a Payload"
+        return step
+
+    def loop(self, at: int) -> Loop:
+        """The step at `at`, which the caller knows is a `Loop`."""
+        step = self.steps[at]
+        assert isinstance(step, Loop), f"step {at} is a {type(step).__name__}, not a Loop"
+        return step
+
     def records(self) -> list[tuple[int, Record]]:
         """Return the record steps with their step indices."""
         return [(i, s) for i, s in enumerate(self.steps) if isinstance(s, Record)]

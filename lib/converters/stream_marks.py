@@ -8,11 +8,10 @@ and derives both from the length: every beat full but the last.
 
 from __future__ import annotations
 
-from typing import Any
-
 from myhdl import Signal, always_comb, always_seq, block, intbv
 
 from rfc.lib.converters.ports import Direction, Port, PortRole
+from rfc.lib.types import Instances, SignalLike
 
 
 def marks_ports(length_bits: int, beat: int) -> list[Port]:
@@ -30,7 +29,7 @@ def marks_ports(length_bits: int, beat: int) -> list[Port]:
 
 
 @block
-def stream_marks(element_size: int, **ports: Any) -> Any:
+def stream_marks(element_size: int, **ports: SignalLike) -> Instances:
     """Keep and last of each beat; a beat taken with none of the message left starts one."""
     clk, rst, length = ports["clk"], ports["rst"], ports["length"]
     tvalid, tready, tkeep, tlast = ports["tvalid"], ports["tready"], ports["tkeep"], ports["tlast"]

@@ -19,8 +19,6 @@ never hangs.
 
 from __future__ import annotations
 
-from typing import Any
-
 from myhdl import Constant, Signal, always_comb, always_seq, block, concat, intbv
 
 from rfc.lib.converters.fields import field_captures
@@ -38,6 +36,7 @@ from rfc.lib.converters.steps import Plan
 from rfc.lib.converters.tables import Kind, tables
 from rfc.lib.converters.window import byte_window
 from rfc.lib.converters.wiring import bits_of, loop_counters, select_bit
+from rfc.lib.types import Instances, SignalLike
 
 TRUNCATED, MAXIMUM, TRAILING, ENCODING = (
     int(Reason.TRUNCATED),
@@ -55,7 +54,7 @@ def subscriber_ports(plan: Plan) -> list[str]:
 
 
 @block
-def rfc_subscriber(plan: Plan, **ports: Any) -> Any:
+def rfc_subscriber(plan: Plan, **ports: SignalLike) -> Instances:
     """The subscriber for `plan`; `ports` holds one signal per name of `subscriber_ports`."""
     t = tables(plan)
     width = plan.width
@@ -67,7 +66,7 @@ def rfc_subscriber(plan: Plan, **ports: Any) -> Any:
     steps = len(plan.steps)
     pc_bits = max(1, (steps - 1).bit_length())
     end_pc = t.end
-    payloads = [plan.steps[pc] for pc in t.streams]
+    payloads = [plan.payload(pc) for pc in t.streams]
     out_bytes = max([width] + [max(width, p.element_size) for p in payloads])
     length_limit = max([1, *t.maximum])
     count_width = count_bits(length_limit)
@@ -131,7 +130,7 @@ def rfc_subscriber(plan: Plan, **ports: Any) -> Any:
     # ---- handshakes in from the consumer, selected by the current step
     channel_ready = Signal(bool(1)) if len(plan.channels) > 1 else Constant(bool(1))
     o_ready = Signal(bool(0)) if t.streams else Constant(bool(0))
-    loop_counts = [Signal(intbv(0)[count_bits(plan.steps[pc].maximum) :]) for pc in t.loops]
+    loop_counts = [Signal(intbv(0)[count_bits(plan.loop(pc).maximum) :]) for pc in t.loops]
     loop_more = [Signal(bool(0)) for _ in t.loops]
     more = Signal(bool(0)) if t.loops else Constant(bool(0))
     readies = [
@@ -166,6 +165,7 @@ def rfc_subscriber(plan: Plan, **ports: Any) -> Any:
         else:
             data.next = front
 
+    # Reads the step ROMs as the publisher's `control` does; a MyHDL process converts whole.
     @always_comb
     def control() -> None:
         kind = kind_rom[pc]

@@ -18,7 +18,7 @@ import linecache
 import sys
 import threading
 import types
-from collections.abc import Callable, Iterable, Iterator, MutableSet, Sequence
+from collections.abc import Callable, Hashable, Iterable, Iterator, MutableSet, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -29,14 +29,15 @@ from myhdl import _visitors as myhdl_visitors_module
 from myhdl.conversion import _analyze as myhdl_analyze_module
 
 from rfc.lib.converters.ports import WIRES, Port, PortRole
+from rfc.lib.types import Instances, SignalLike
 from rfc.toolchain import start_new_design
 
 _serial = itertools.count()
 
 
-def port_signals(ports: Sequence[Port]) -> dict[str, Any]:
+def port_signals(ports: Sequence[Port]) -> dict[str, SignalLike]:
     """Create one signal per port: bool for wires and bools, else intbv; sync active-high reset."""
-    signals: dict[str, Any] = {}
+    signals: dict[str, SignalLike] = {}
     for port in ports:
         if port.role is PortRole.RESET:
             signals[port.name] = ResetSignal(0, active=1, isasync=False)
@@ -48,8 +49,8 @@ def port_signals(ports: Sequence[Port]) -> dict[str, Any]:
 
 
 def top_block(
-    name: str, port_names: Sequence[str], body: Callable[..., Any], **parameters: Any
-) -> Any:
+    name: str, port_names: Sequence[str], body: Callable[..., Instances], **parameters: object
+) -> Callable[..., Instances]:
     """Return a ``@block`` function `name` whose parameters are `port_names`.
 
     Calling it with the port signals (as keywords) elaborates the block
@@ -72,7 +73,7 @@ def top_block(
         ],
     )
     function = ast.FunctionDef(
-        name=name, args=arguments, body=[ast.Return(call)], decorator_list=[], type_params=[]
+        name=name, args=arguments, body=[ast.Return(call)], decorator_list=[]
     )
     module = ast.fix_missing_locations(ast.Module(body=[function], type_ignores=[]))
     source = ast.unparse(module) + "\n"
@@ -87,7 +88,7 @@ def top_block(
 
 def _frames_without_context(context: int = 1) -> list[inspect.FrameInfo]:
     """`inspect.stack` without reading source lines: the caller's frames, outermost last."""
-    frame = sys._getframe(1)
+    frame: types.FrameType | None = sys._getframe(1)
     records = []
     while frame is not None:
         code = frame.f_code
@@ -107,7 +108,7 @@ class _QuickInspect(types.ModuleType):
         return getattr(inspect, name)
 
 
-class _InsertionOrderedSet(MutableSet[Any]):
+class _InsertionOrderedSet(MutableSet[Hashable]):
     """A set that iterates in insertion order, for MyHDL's sets of signal names.
 
     MyHDL collects the signals a process reads and writes in plain sets of names and writes
@@ -116,22 +117,22 @@ class _InsertionOrderedSet(MutableSet[Any]):
     the same design converts to the same bytes every time.
     """
 
-    def __init__(self, items: Iterable[Any] = ()) -> None:
+    def __init__(self, items: Iterable[Hashable] = ()) -> None:
         self._items = dict.fromkeys(items)
 
     def __contains__(self, item: object) -> bool:
         return item in self._items
 
-    def __iter__(self) -> Iterator[Any]:
+    def __iter__(self) -> Iterator[Hashable]:
         return iter(self._items)
 
     def __len__(self) -> int:
         return len(self._items)
 
-    def add(self, value: Any) -> None:
+    def add(self, value: Hashable) -> None:
         self._items[value] = None
 
-    def discard(self, value: Any) -> None:
+    def discard(self, value: Hashable) -> None:
         self._items.pop(value, None)
 
     def __repr__(self) -> str:
@@ -196,6 +197,7 @@ _ELABORATING = threading.RLock()
 
 
 def _patch_myhdl() -> None:
+    replacements: list[tuple[types.ModuleType, str, object]]
     replacements = [(module, "inspect", _QuickInspect("inspect")) for module in _STACK_CALLERS]
     replacements += [(module, "set", _InsertionOrderedSet) for module in _NAME_SET_USERS]
     _patched.saved = [

@@ -10,7 +10,7 @@ can use them too.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -18,7 +18,7 @@ import numpy as np
 
 from rfc.lib.converters.steps import Loop, Payload, Plan, Record, SlotRole
 from rfc.messages.codec import PRIMITIVE_STRUCTS, Values, default_values
-from rfc.messages.layout import FieldKind, Layout
+from rfc.messages.layout import FieldKind, Layout, LayoutField
 from rfc.messages.rosbags_adapter import PRIMITIVE_DTYPES
 
 
@@ -68,9 +68,8 @@ def _walk(plan: Plan, start: int, stop: int, values: Mapping[str, Any], record: 
     while at < stop:
         step = plan.steps[at]
         if isinstance(step, Record):
-            for slot in step.slots:
-                if slot.role is SlotRole.FIELD and slot.port and slot.field:
-                    record[slot.port] = port_value(slot.field.element_type, values[slot.field.path])
+            for port, leaf in _selected(step):
+                record[port] = port_value(leaf.element_type, values[leaf.path])
         elif isinstance(step, Payload):
             data = _payload_bytes(step, values[step.field.path])
             if step.stream and step.length_port:
@@ -91,9 +90,17 @@ def _walk(plan: Plan, start: int, stop: int, values: Mapping[str, Any], record: 
         at += 1
 
 
+def _selected(record: Record) -> Iterator[tuple[str, LayoutField]]:
+    """The port and leaf of each field of `record` the accelerator sees."""
+    for slot in record.slots:
+        if slot.role is SlotRole.FIELD and slot.port and slot.field:
+            yield slot.port, slot.field
+
+
 def _payload_bytes(step: Payload, value: Any) -> bytes:
     if step.field.kind is FieldKind.STRING:
-        return value.encode()
+        text: str = value
+        return text.encode()
     array = np.asarray(value, dtype=PRIMITIVE_DTYPES[step.field.element_type])
     if step.is_bool:
         array = array.astype(bool).astype(np.uint8)
@@ -118,10 +125,8 @@ def _unwalk(plan: Plan, layout: Layout, start: int, stop: int, record: Mapping[s
     while at < stop:
         step = plan.steps[at]
         if isinstance(step, Record):
-            for slot in step.slots:
-                if slot.role is SlotRole.FIELD and slot.port and slot.field:
-                    leaf = slot.field
-                    values[leaf.path] = field_value(leaf.element_type, record[slot.port])
+            for port, leaf in _selected(step):
+                values[leaf.path] = field_value(leaf.element_type, record[port])
         elif isinstance(step, Payload) and step.stream:
             data = streams[step.stream].pop(0)
             if step.field.kind is FieldKind.STRING:
@@ -132,7 +137,7 @@ def _unwalk(plan: Plan, layout: Layout, start: int, stop: int, record: Mapping[s
         elif isinstance(step, Loop):
             count = record[step.count_port] if step.count_port else 0
             channel = plan.channels[step.element_channel]
-            items = []
+            items: list[Values | str] = []
             for _ in range(count):
                 element = elements[channel.name].pop(0)
                 inner = step.field.element

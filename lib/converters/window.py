@@ -15,27 +15,27 @@ Only the last beat's ``tkeep`` is read (valid bytes from lane 0 up); other beats
 
 from __future__ import annotations
 
-from typing import Any
-
 from myhdl import Signal, always_comb, always_seq, block, intbv
+
+from rfc.lib.types import Instances, SignalLike
 
 
 @block
 def byte_window(
-    clk: Any,
-    rst: Any,
-    tdata: Any,
-    tkeep: Any,
-    tvalid: Any,
-    tready: Any,
-    tlast: Any,
-    take: Any,
-    release: Any,
-    front: Any,
-    avail: Any,
-    ended: Any,
+    clk: SignalLike,
+    rst: SignalLike,
+    tdata: SignalLike,
+    tkeep: SignalLike,
+    tvalid: SignalLike,
+    tready: SignalLike,
+    tlast: SignalLike,
+    take: SignalLike,
+    release: SignalLike,
+    front: SignalLike,
+    avail: SignalLike,
+    ended: SignalLike,
     width: int,
-) -> Any:
+) -> Instances:
     """Buffer beats of `width` bytes; expose the first `width` bytes and how many are valid.
 
     Args:

@@ -2,20 +2,21 @@
 
 from __future__ import annotations
 
-from typing import Any
-
 from myhdl import ConcatSignal, always_comb, always_seq, block
 
 from rfc.lib.converters.steps import Loop, Plan
+from rfc.lib.types import Instances, SignalLike
 
 
-def bits_of(signals: list[Any]) -> Any:
+def bits_of(signals: list[SignalLike]) -> SignalLike:
     """One vector of single-bit signals, the first in bit 0."""
     return ConcatSignal(*reversed(signals)) if len(signals) > 1 else signals[0]
 
 
 @block
-def select_bit(bits: Any, table: tuple[int, ...], pc: Any, out: Any) -> Any:
+def select_bit(
+    bits: SignalLike, table: tuple[int, ...], pc: SignalLike, out: SignalLike
+) -> Instances:
     """Drive `out` with bit ``table[pc]`` of `bits` (the handshake of the current step)."""
 
     @always_comb
@@ -27,7 +28,7 @@ def select_bit(bits: Any, table: tuple[int, ...], pc: Any, out: Any) -> Any:
 
 
 @block
-def index_bit(bits: Any, index: Any, out: Any) -> Any:
+def index_bit(bits: SignalLike, index: SignalLike, out: SignalLike) -> Instances:
     """Drive `out` with bit `index` of `bits`."""
 
     @always_comb
@@ -38,7 +39,7 @@ def index_bit(bits: Any, index: Any, out: Any) -> Any:
 
 
 @block
-def follow(source: Any, target: Any) -> Any:
+def follow(source: SignalLike, target: SignalLike) -> Instances:
     """Drive `target` with `source`."""
 
     @always_comb
@@ -49,8 +50,18 @@ def follow(source: Any, target: Any) -> Any:
 
 
 @block
-def loop_counter(clk: Any, rst: Any, pc: Any, count: Any, load: Any, step: Any, at: int,
-                 end: int, counter: Any, more: Any) -> Any:  # fmt: skip
+def loop_counter(
+    clk: SignalLike,
+    rst: SignalLike,
+    pc: SignalLike,
+    count: SignalLike,
+    load: SignalLike,
+    step: SignalLike,
+    at: int,
+    end: int,
+    counter: SignalLike,
+    more: SignalLike,
+) -> Instances:
     """Elements left in one sequence: loaded at its Loop step, counted down at its Next."""
 
     @always_seq(clk.posedge, reset=rst)
@@ -67,22 +78,30 @@ def loop_counter(clk: Any, rst: Any, pc: Any, count: Any, load: Any, step: Any, 
     return track, status
 
 
+# The ports of `loop_counter`, one per Loop step of the plan.
 @block
-def loop_counters(plan: Plan, clk: Any, rst: Any, pc: Any, count: Any, load: Any, step: Any,
-                  counters: list[Any], mores: list[Any], more: Any) -> Any:  # fmt: skip
+def loop_counters(
+    plan: Plan,
+    clk: SignalLike,
+    rst: SignalLike,
+    pc: SignalLike,
+    count: SignalLike,
+    load: SignalLike,
+    step: SignalLike,
+    counters: list[SignalLike],
+    mores: list[SignalLike],
+    more: SignalLike,
+) -> Instances:
     """One `loop_counter` per Loop step; `more` tells whether the current loop repeats."""
     loops = [at for at, step in enumerate(plan.steps) if isinstance(step, Loop)]
     blocks = []
     for at, counter, flag in zip(loops, counters, mores, strict=True):
-        loop = plan.steps[at]
-        assert isinstance(loop, Loop)
+        loop = plan.loop(at)
         blocks.append(loop_counter(clk, rst, pc, count, load, step, at, loop.next, counter, flag))
     if len(mores) > 1:
         table = [0] * len(plan.steps)
         for index, at in enumerate(loops):
-            loop = plan.steps[at]
-            assert isinstance(loop, Loop)
-            table[loop.next] = index
+            table[plan.loop(at).next] = index
         blocks.append(select_bit(bits_of(mores), tuple(table), pc, more))
     elif mores:
         blocks.append(follow(mores[0], more))

@@ -18,27 +18,28 @@ from myhdl import Signal, always_comb, always_seq, block, intbv
 from rfc.lib.arith.pipeline import stall_control
 from rfc.lib.cordic.config import CordicConfig
 from rfc.lib.cordic.stage import micro_rotation, rotation
+from rfc.lib.types import Instances, SignalLike
 
 
-def _signed(bits: int, value: int = 0) -> Signal:
+def _signed(bits: int, value: int = 0) -> SignalLike:
     return Signal(intbv(value, min=-(1 << (bits - 1)), max=1 << (bits - 1)))
 
 
 @block
 def cordic_vectoring(
-    clk,
-    rst,
-    in_valid,
-    in_ready,
-    x,
-    y,
-    out_valid,
-    out_ready,
-    angle,
-    magnitude,
+    clk: SignalLike,
+    rst: SignalLike,
+    in_valid: SignalLike,
+    in_ready: SignalLike,
+    x: SignalLike,
+    y: SignalLike,
+    out_valid: SignalLike,
+    out_ready: SignalLike,
+    angle: SignalLike,
+    magnitude: SignalLike,
     config: CordicConfig,
     pipelined: bool = False,
-):
+) -> Instances:
     """Vectoring CORDIC: atan2(y, x) and gain·sqrt(x² + y²), with valid/ready handshakes.
 
     Args:
@@ -69,9 +70,10 @@ def cordic_vectoring(
 
 
 @block
-def cordic_iterative(
-    clk, rst, in_valid, in_ready, x, y, out_valid, out_ready, angle, magnitude, config
-):
+def cordic_iterative(clk: SignalLike, rst: SignalLike, in_valid: SignalLike,
+                     in_ready: SignalLike, x: SignalLike, y: SignalLike, out_valid: SignalLike,
+                     out_ready: SignalLike, angle: SignalLike, magnitude: SignalLike,
+                     config: CordicConfig) -> Instances:  # fmt: skip
     """One micro-rotation per cycle through variable shifts; ports as `cordic_vectoring`."""
     iterations = config.iterations
     internal = config.internal_width
@@ -92,7 +94,7 @@ def cordic_iterative(
     rotate = rotation(True, step, rom, step, (xs, ys, zs), (x_next, y_next, z_next))
 
     @always_seq(clk.posedge, reset=rst)
-    def iterate():
+    def iterate() -> None:
         if step != iterations:
             xs.next = x_next
             ys.next = y_next
@@ -112,7 +114,7 @@ def cordic_iterative(
             step.next = 0
 
     @always_comb
-    def outputs():
+    def outputs() -> None:
         in_ready.next = step == iterations and not full
         out_valid.next = full
         magnitude.next = xs >> guard
@@ -122,9 +124,10 @@ def cordic_iterative(
 
 
 @block
-def cordic_pipelined(
-    clk, rst, in_valid, in_ready, x, y, out_valid, out_ready, angle, magnitude, config
-):
+def cordic_pipelined(clk: SignalLike, rst: SignalLike, in_valid: SignalLike,
+                     in_ready: SignalLike, x: SignalLike, y: SignalLike, out_valid: SignalLike,
+                     out_ready: SignalLike, angle: SignalLike, magnitude: SignalLike,
+                     config: CordicConfig) -> Instances:  # fmt: skip
     """A stage per micro-rotation with fixed shifts; ports as `cordic_vectoring`."""
     advance = Signal(bool(0))
     valid_last = Signal(bool(0))
@@ -138,7 +141,9 @@ def cordic_pipelined(
 
 
 @block
-def cordic_pipeline(clk, rst, advance, valid_in, x, y, valid_out, angle, magnitude, config):
+def cordic_pipeline(clk: SignalLike, rst: SignalLike, advance: SignalLike, valid_in: SignalLike,
+                    x: SignalLike, y: SignalLike, valid_out: SignalLike, angle: SignalLike,
+                    magnitude: SignalLike, config: CordicConfig) -> Instances:  # fmt: skip
     """The unrolled vectoring CORDIC without handshakes: it moves when `advance` is high.
 
     A pair entering on a cycle with `advance` high comes out ``config.latency`` advancing
@@ -165,8 +170,9 @@ def cordic_pipeline(clk, rst, advance, valid_in, x, y, valid_out, angle, magnitu
     pi_rom = (config.pi,)
     angle_bits = config.angle_width
 
+    # Registers of one stage, like `stage.micro_rotation`'s; this one turns the input by π.
     @always_seq(clk.posedge, reset=rst)
-    def prerotate():
+    def prerotate() -> None:
         if advance:
             x_first.next = x_turned
             y_first.next = y_turned
@@ -192,7 +198,7 @@ def cordic_pipeline(clk, rst, advance, valid_in, x, y, valid_out, angle, magnitu
     ]
 
     @always_comb
-    def outputs():
+    def outputs() -> None:
         half_turn = intbv(0, min=-(1 << (angle_bits - 1)), max=1 << (angle_bits - 1))
         half_turn[:] = pi_rom[0]
         valid_out.next = valid_last
@@ -208,7 +214,9 @@ def cordic_pipeline(clk, rst, advance, valid_in, x, y, valid_out, angle, magnitu
 
 
 @block
-def cordic_prerotation(x, y, x_turned, y_turned, start_angle, y_zero, config):
+def cordic_prerotation(x: SignalLike, y: SignalLike, x_turned: SignalLike, y_turned: SignalLike,
+                       start_angle: SignalLike, y_zero: SignalLike,
+                       config: CordicConfig) -> Instances:  # fmt: skip
     """Inputs as the iterations start from them (combinational).
 
     Negative x is turned by π (both negated; the angle starts at +π when y >= 0, else -π) so
@@ -221,7 +229,7 @@ def cordic_prerotation(x, y, x_turned, y_turned, start_angle, y_zero, config):
     pi_rom = (config.pi,)
 
     @always_comb
-    def turn():
+    def turn() -> None:
         xi = intbv(0, min=-(1 << (internal - 1)), max=1 << (internal - 1))
         yi = intbv(0, min=-(1 << (internal - 1)), max=1 << (internal - 1))
         half_turn = intbv(0, min=-(1 << (angle_bits - 1)), max=1 << (angle_bits - 1))

@@ -10,11 +10,17 @@ stages need to know about the input: a negation, a level vector) along unchanged
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 from myhdl import Signal, always_comb, always_seq, block, intbv
+
+from rfc.lib.types import Instances, SignalLike
 
 
 @block
-def rotation(vectoring: bool, shift, turns: tuple[int, ...], index, before, after):
+def rotation(vectoring: bool, shift: int | SignalLike, turns: tuple[int, ...],
+             index: int | SignalLike, before: Sequence[SignalLike],
+             after: Sequence[SignalLike]) -> Instances:  # fmt: skip
     """``(x, y, z)`` after one micro-rotation (combinational).
 
     Args:
@@ -36,7 +42,7 @@ def rotation(vectoring: bool, shift, turns: tuple[int, ...], index, before, afte
     down_sign = 0 if vectoring else 1
 
     @always_comb
-    def turn_vector():
+    def turn_vector() -> None:
         turn = intbv(0, min=-(1 << (width - 1)), max=1 << (width - 1))
         turn[:] = turns[index]
         if lead[top] == down_sign:
@@ -52,7 +58,9 @@ def rotation(vectoring: bool, shift, turns: tuple[int, ...], index, before, afte
 
 
 @block
-def micro_rotation(clk, rst, advance, shift: int, angle_step: int, vectoring: bool, before, after):
+def micro_rotation(clk: SignalLike, rst: SignalLike, advance: SignalLike, shift: int,
+                   angle_step: int, vectoring: bool, before: Sequence[SignalLike],
+                   after: Sequence[SignalLike]) -> Instances:  # fmt: skip
     """One micro-rotation as a pipeline stage, registered on the cycles `advance` is high.
 
     Args:
@@ -76,7 +84,7 @@ def micro_rotation(clk, rst, advance, shift: int, angle_step: int, vectoring: bo
     # One process for the stage's registers (a process per register would triple the
     # generators MyHDL converts in a long pipeline).
     @always_seq(clk.posedge, reset=rst)
-    def hold():
+    def hold() -> None:
         if advance:
             valid_out.next = valid_in
             tag_out.next = tag_in

@@ -20,7 +20,6 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
 
 from myhdl import ConcatSignal, Signal, always_comb, always_seq, block, enum, intbv
 
@@ -28,6 +27,7 @@ from rfc.lib.converters.buffers import split
 from rfc.lib.converters.fifo import fifo
 from rfc.lib.converters.wiring import follow, index_bit
 from rfc.lib.hls.streams import pack_elements, unpack_beats
+from rfc.lib.types import Instances, SignalLike
 
 
 @dataclass(frozen=True)
@@ -76,7 +76,7 @@ class AdapterShape:
 
 
 @block
-def hls_adapter(shape: AdapterShape, **ports: Any) -> Any:
+def hls_adapter(shape: AdapterShape, **ports: SignalLike) -> Instances:
     """Instantiate the control, the stream adapters and one capture register per output."""
     parts = []
     inputs = max(len(shape.inputs), 1)
@@ -155,7 +155,7 @@ def hls_adapter(shape: AdapterShape, **ports: Any) -> Any:
     return parts
 
 
-def _vector(signals: Sequence[Any]) -> Any:
+def _vector(signals: Sequence[SignalLike]) -> SignalLike:
     """The signals as one vector, the first in bit 0; for one or none, a signal to drive."""
     if len(signals) > 1:
         return ConcatSignal(*reversed(signals))
@@ -164,18 +164,18 @@ def _vector(signals: Sequence[Any]) -> Any:
 
 @block
 def ap_control(
-    clk: Any,
-    rst: Any,
-    startable: Any,
-    in_valid: Any,
-    in_ready: Any,
-    ap_start: Any,
-    ap_done: Any,
-    ap_ready: Any,
-    out_valid: Any,
-    out_ready: Any,
-    finished: Any,
-) -> Any:
+    clk: SignalLike,
+    rst: SignalLike,
+    startable: SignalLike,
+    in_valid: SignalLike,
+    in_ready: SignalLike,
+    ap_start: SignalLike,
+    ap_done: SignalLike,
+    ap_ready: SignalLike,
+    out_valid: SignalLike,
+    out_ready: SignalLike,
+    finished: SignalLike,
+) -> Instances:
     """Start the core when every input can be read; after ``ap_done`` take and offer all."""
     everyone_in = (1 << len(in_valid)) - 1
     everyone_out = (1 << len(out_valid)) - 1
@@ -217,7 +217,7 @@ def ap_control(
 
 
 @block
-def either(a: Any, b: Any, out: Any) -> Any:
+def either(a: SignalLike, b: SignalLike, out: SignalLike) -> Instances:
     """Drive `out` with ``a or b``."""
 
     @always_comb
@@ -228,7 +228,9 @@ def either(a: Any, b: Any, out: Any) -> Any:
 
 
 @block
-def capture(clk: Any, rst: Any, core: Any, valid: Any, field: Any) -> Any:
+def capture(
+    clk: SignalLike, rst: SignalLike, core: SignalLike, valid: SignalLike, field: SignalLike
+) -> Instances:
     """Hold a core output from the cycle its ``_ap_vld`` is high."""
     bits = len(field)  # a length: the core's uint32_t, the field as wide as its maximum
 

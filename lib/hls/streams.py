@@ -19,23 +19,24 @@ The wrapper of HLS cores (`rfc.lib.hls.adapter`) instantiates both.
 
 from __future__ import annotations
 
-from typing import Any
-
 from myhdl import Signal, always_comb, always_seq, block, intbv
 
+from rfc.lib.types import Instances, SignalLike
 
+
+# AXI-Stream in as `byte_window`'s: each block names its own ports.
 @block
 def unpack_beats(
-    clk: Any,
-    rst: Any,
-    tdata: Any,
-    tkeep: Any,
-    tvalid: Any,
-    tready: Any,
-    dout: Any,
-    empty_n: Any,
-    read: Any,
-) -> Any:
+    clk: SignalLike,
+    rst: SignalLike,
+    tdata: SignalLike,
+    tkeep: SignalLike,
+    tvalid: SignalLike,
+    tready: SignalLike,
+    dout: SignalLike,
+    empty_n: SignalLike,
+    read: SignalLike,
+) -> Instances:
     """Offer the elements of each beat in order, little-endian; pop the beat with its last."""
     element_bits = len(dout)
     element_bytes = element_bits // 8
@@ -75,16 +76,16 @@ def unpack_beats(
 
 @block
 def pack_elements(
-    clk: Any,
-    rst: Any,
-    din: Any,
-    full_n: Any,
-    write: Any,
-    flush: Any,
-    tdata: Any,
-    tvalid: Any,
-    tready: Any,
-) -> Any:
+    clk: SignalLike,
+    rst: SignalLike,
+    din: SignalLike,
+    full_n: SignalLike,
+    write: SignalLike,
+    flush: SignalLike,
+    tdata: SignalLike,
+    tvalid: SignalLike,
+    tready: SignalLike,
+) -> Instances:
     """Gather elements into beats (the first in the low bytes); send when full or flushed."""
     element_bits = len(din)
     per_beat = len(tdata) // element_bits

@@ -10,25 +10,31 @@ the beats a slice holds let a publisher go on while the scheduler decides.
 
 from __future__ import annotations
 
-from typing import Any
-
 from myhdl import Signal, always_comb, block, intbv
 
 from rfc.lib.slice import parts_slice
+from rfc.lib.types import Instances, SignalLike
 
 
-def stream_like(signals: list[Any]) -> list[Any]:
+def stream_like(signals: list[SignalLike]) -> list[SignalLike]:
     """Fresh signals of the widths (and kinds) of `signals`, for the other side of a slice."""
     return [
         Signal(bool(0)) if isinstance(s.val, bool) else Signal(intbv(0)[len(s) :]) for s in signals
     ]
 
 
+# The ports of `parts_slice` (a MyHDL block takes every port as its own parameter).
 @block
 def routed_slice(
-    clk: Any, rst: Any, sources: list[Any], s_valid: Any, s_ready: Any, sinks: list[Any],
-    m_valid: Any, m_ready: Any,
-) -> Any:  # fmt: skip
+    clk: SignalLike,
+    rst: SignalLike,
+    sources: list[SignalLike],
+    s_valid: SignalLike,
+    s_ready: SignalLike,
+    sinks: list[SignalLike],
+    m_valid: SignalLike,
+    m_ready: SignalLike,
+) -> Instances:
     """A slice in front of several consumers sharing the sinks: ``s_valid`` says which.
 
     The consumers' valids travel through the slice with the beat, so each comes from a
@@ -51,18 +57,26 @@ def routed_slice(
     )
 
     @always_comb
-    def offer():
+    def offer() -> None:
         any_valid.next = s_valid != 0
         taken.next = (m_valid & m_ready) != 0
 
     return core, offer
 
 
+# The ports of `parts_slice`, and how many slices to chain.
 @block
 def slice_chain(
-    clk: Any, rst: Any, sources: list[Any], s_valid: Any, s_ready: Any, sinks: list[Any],
-    m_valid: Any, m_ready: Any, stages: int,
-) -> Any:  # fmt: skip
+    clk: SignalLike,
+    rst: SignalLike,
+    sources: list[SignalLike],
+    s_valid: SignalLike,
+    s_ready: SignalLike,
+    sinks: list[SignalLike],
+    m_valid: SignalLike,
+    m_ready: SignalLike,
+    stages: int,
+) -> Instances:
     """`stages` slices in a row: room for twice `stages` beats, `stages` cycles of latency."""
     parts = []
     for stage in range(stages):

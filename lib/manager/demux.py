@@ -12,11 +12,10 @@ An empty chunk of id `STATUS_ID` is the processor asking for the drop counters: 
 
 from __future__ import annotations
 
-from typing import Any
-
 from myhdl import Signal, always_comb, always_seq, block, enum, intbv
 
 from rfc.lib.manager.header import FLAG_END, FLAG_START, HEADER_BYTES, STATUS_ID, BusGeometry
+from rfc.lib.types import Instances, SignalLike
 
 #: Width of the saturating protocol-error counter.
 ERROR_COUNT_BITS = 16
@@ -24,23 +23,23 @@ ERROR_COUNT_BITS = 16
 
 @block
 def chunk_demux(
-    clk: Any,
-    rst: Any,
-    s_tdata: Any,
-    s_tkeep: Any,
-    s_tvalid: Any,
-    s_tready: Any,
-    s_tlast: Any,
-    m_tdata: Any,
-    m_tkeep: Any,
-    m_tlast: Any,
-    m_tvalid: Any,
-    m_tready: Any,
-    error_count: Any,
+    clk: SignalLike,
+    rst: SignalLike,
+    s_tdata: SignalLike,
+    s_tkeep: SignalLike,
+    s_tvalid: SignalLike,
+    s_tready: SignalLike,
+    s_tlast: SignalLike,
+    m_tdata: SignalLike,
+    m_tkeep: SignalLike,
+    m_tlast: SignalLike,
+    m_tvalid: SignalLike,
+    m_tready: SignalLike,
+    error_count: SignalLike,
     width: int,
     subscribers: int,
-    status_request: Any = None,
-) -> Any:
+    status_request: SignalLike = None,
+) -> Instances:
     """Demultiplex PS→PL chunks to `subscribers` converters.
 
     Args:
@@ -84,7 +83,7 @@ def chunk_demux(
     answering = status_request is not None
 
     @always_comb
-    def assemble_header():
+    def assemble_header() -> None:
         # The header so far, with this beat's bytes in their place.
         assembled = intbv(0)[8 * HEADER_BYTES :]
         assembled[:] = stored
@@ -94,12 +93,12 @@ def chunk_demux(
         word.next = assembled
 
     @always_comb
-    def count_lanes():
+    def count_lanes() -> None:
         # A table of every tkeep (two levels of LUTs), not a chain of adders.
         beat_bytes.next = popcounts[s_tkeep]
 
     @always_comb
-    def drive_outputs():
+    def drive_outputs() -> None:
         m_tdata.next = s_tdata
         if state == t_state.EMPTY:
             m_tkeep.next = 0
@@ -123,17 +122,17 @@ def chunk_demux(
             s_tready.next = 1
 
     @always_comb
-    def report():
+    def report() -> None:
         error_count.next = errors
 
     if answering:
 
         @always_comb
-        def ask():
+        def ask() -> None:
             status_request.next = asked
 
     @always_seq(clk.posedge, reset=rst)
-    def parse():
+    def parse() -> None:
         fault = False
         asked.next = False
         if state == t_state.HEADER:

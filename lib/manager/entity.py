@@ -13,13 +13,20 @@ the manager hands on comes from a flip-flop.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
 
 from myhdl import ConcatSignal, Signal, always, always_comb, block, intbv
 
 from rfc.lib.converters.malformed import DROP_REASONS, status_port
-from rfc.lib.converters.ports import COUNTER_BITS, Direction, Port, PortRole
+from rfc.lib.converters.ports import (
+    COUNTER_BITS,
+    Direction,
+    Port,
+    PortRole,
+    axis_ports,
+    clock_ports,
+)
 from rfc.lib.converters.toplevel import top_block
 from rfc.lib.converters.wiring import follow, index_bit
 from rfc.lib.manager.boundary import routed_slice, slice_chain, stream_like
@@ -29,6 +36,7 @@ from rfc.lib.manager.mux import chunk_mux
 from rfc.lib.manager.status import status_inserter
 from rfc.lib.schedulers.spec import AnySchedulerSpec
 from rfc.lib.slice import parts_slice
+from rfc.lib.types import Instances, SignalLike
 
 #: Bits of a publisher's frame-length input.
 LENGTH_BITS = 32
@@ -61,37 +69,23 @@ class ManagerShape:
             raise ValueError(f"a scheduler of {inputs} inputs for {self.publishers} publishers")
 
 
-def _stream(prefix: str, width: int, source: bool) -> list[Port]:
-    """An AXI-Stream port group; `source` when this entity drives tdata/tvalid."""
-    out, into = (Direction.OUT, Direction.IN) if source else (Direction.IN, Direction.OUT)
-    lanes = width // 8
-    return [
-        Port(f"{prefix}_tdata", width, out, PortRole.TDATA, prefix),
-        Port(f"{prefix}_tkeep", lanes, out, PortRole.TKEEP, prefix),
-        Port(f"{prefix}_tvalid", 1, out, PortRole.TVALID, prefix),
-        Port(f"{prefix}_tready", 1, into, PortRole.TREADY, prefix),
-        Port(f"{prefix}_tlast", 1, out, PortRole.TLAST, prefix),
-    ]
-
-
 def manager_ports(shape: ManagerShape) -> tuple[Port, ...]:
     """The manager's ports, in declaration order."""
     BusGeometry(shape.width)  # validates the width
     ports = [
-        Port("clk", 1, Direction.IN, PortRole.CLOCK),
-        Port("rst", 1, Direction.IN, PortRole.RESET),
-        *_stream("s_axis_mm2s", shape.width, source=False),
-        *_stream("m_axis_s2mm", shape.width, source=True),
+        *clock_ports(),
+        *axis_ports("s_axis_mm2s", shape.width // 8, Direction.IN),
+        *axis_ports("m_axis_s2mm", shape.width // 8, Direction.OUT),
         Port("error_count", ERROR_COUNT_BITS, Direction.OUT, PortRole.ERROR_COUNT),
     ]
     for index in range(shape.subscribers):
-        ports += _stream(f"sub{index}", shape.width, source=True)
+        ports += axis_ports(f"sub{index}", shape.width // 8, Direction.OUT)
     ports += [
         Port(name, COUNTER_BITS, Direction.IN, PortRole.ERROR_COUNT)
         for name in status_inputs(shape.subscribers)
     ]
     for index in range(shape.publishers):
-        ports += _stream(f"pub{index}", shape.width, source=False)
+        ports += axis_ports(f"pub{index}", shape.width // 8, Direction.IN)
         ports.append(Port(f"pub{index}_length", LENGTH_BITS, Direction.IN, PortRole.FRAME_LENGTH))
     return tuple(ports)
 
@@ -101,17 +95,17 @@ def status_inputs(subscribers: int) -> list[str]:
     return [status_port(i, reason) for i in range(subscribers) for reason in DROP_REASONS]
 
 
-def manager_top(shape: ManagerShape, name: str) -> Any:
+def manager_top(shape: ManagerShape, name: str) -> Callable[..., Instances]:
     """The manager as a MyHDL top-level block named `name`; call it with its port signals."""
     return top_block(name, [p.name for p in manager_ports(shape)], manager_body, shape=shape)
 
 
 @block
-def manager_body(shape: ManagerShape, **ports: Any) -> Any:
+def manager_body(shape: ManagerShape, **ports: SignalLike) -> Instances:
     """The demultiplexer fanned out to the subscribers, the multiplexer over the publishers."""
     width, lanes = shape.width, shape.width // 8
     clk, rst = ports["clk"], ports["rst"]
-    parts: list[Any] = []
+    parts: list[Instances] = []
     n_sub, n_pub = shape.subscribers, shape.publishers
 
     # The DMA's MM2S stream, registered on the way in.
@@ -137,7 +131,8 @@ def manager_body(shape: ManagerShape, **ports: Any) -> Any:
     parts.append(spread_bit(taken, tready))
     parts.append(
         chunk_demux(
-            clk, rst, *mm2s[:2], mm2s_valid, mm2s_ready, mm2s[2], *beat, tvalid, tready,
+            clk, rst, mm2s[0], mm2s[1], mm2s_valid, mm2s_ready, mm2s[2], beat[0], beat[1], beat[2],
+            tvalid, tready,
             ports["error_count"], width=width, subscribers=fanout, status_request=request,
         )
     )  # fmt: skip
@@ -197,16 +192,20 @@ def manager_body(shape: ManagerShape, **ports: Any) -> Any:
 
 @block
 def publisher_inputs(
-    shape: ManagerShape, clk: Any, rst: Any, ports: dict[str, Any], out: dict[str, Any],
-    out_ready: Any,
-) -> Any:  # fmt: skip
+    shape: ManagerShape,
+    clk: SignalLike,
+    rst: SignalLike,
+    ports: dict[str, SignalLike],
+    out: dict[str, SignalLike],
+    out_ready: SignalLike,
+) -> Instances:
     """Each publisher's stream and length through a slice, then the multiplexer over them."""
     assert shape.scheduler is not None
     width, lanes, n_pub = shape.width, shape.width // 8, shape.publishers
     inputs = shape.scheduler.n
-    parts: list[Any] = []
+    parts: list[Instances] = []
     names = ("tdata", "tkeep", "tlast", "length")
-    sliced: dict[str, list[Any]] = {name: [] for name in (*names, "tvalid", "tready")}
+    sliced: dict[str, list[SignalLike]] = {name: [] for name in (*names, "tvalid", "tready")}
     for i in range(n_pub):
         sources = [ports[f"pub{i}_{name}"] for name in names]
         sinks = stream_like(sources)
@@ -243,12 +242,12 @@ def publisher_inputs(
 
 
 @block
-def spread_bit(bit: Any, vector: Any) -> Any:
+def spread_bit(bit: SignalLike, vector: SignalLike) -> Instances:
     """Drive every bit of `vector` with `bit`."""
     ones = 2 ** len(vector) - 1
 
     @always_comb
-    def copy():
+    def copy() -> None:
         if bit:
             vector.next = ones
         else:
@@ -257,7 +256,7 @@ def spread_bit(bit: Any, vector: Any) -> Any:
     return copy
 
 
-def _vector(signals: list[Any]) -> tuple[Any, Any]:
+def _vector(signals: list[SignalLike]) -> tuple[SignalLike, SignalLike]:
     """One vector of the signals, the first in the lowest bits.
 
     Returns:
@@ -270,11 +269,13 @@ def _vector(signals: list[Any]) -> tuple[Any, Any]:
 
 
 @block
-def silent_output(clk: Any, tdata: Any, tkeep: Any, tvalid: Any, tlast: Any) -> Any:
+def silent_output(
+    clk: SignalLike, tdata: SignalLike, tkeep: SignalLike, tvalid: SignalLike, tlast: SignalLike
+) -> Instances:
     """No publishers: the PL→PS stream never sends."""
 
     @always(clk.posedge)
-    def idle():
+    def idle() -> None:
         tdata.next = 0
         tkeep.next = 0
         tvalid.next = 0

@@ -18,13 +18,12 @@ chunks always carry whole messages (docs/protocol.md).
 
 from __future__ import annotations
 
-from typing import Any
-
 from myhdl import Signal, always_comb, always_seq, block, enum, intbv
 
 from rfc.lib.manager.header import FLAG_END, FLAG_START, HEADER_BYTES, BusGeometry
 from rfc.lib.schedulers.hardware import scheduler_block
 from rfc.lib.schedulers.spec import AnySchedulerSpec, CompositionSpec
+from rfc.lib.types import Instances, SignalLike
 
 
 def is_preemptive(spec: AnySchedulerSpec) -> bool:
@@ -34,24 +33,25 @@ def is_preemptive(spec: AnySchedulerSpec) -> bool:
     return spec.algorithm.preemptive
 
 
+# AXI-Stream in and out like the manager's other parts; each block names its own ports.
 @block
 def chunk_mux(
-    clk: Any,
-    rst: Any,
-    s_tdata: Any,
-    s_tkeep: Any,
-    s_tvalid: Any,
-    s_tready: Any,
-    s_tlast: Any,
-    s_length: Any,
-    m_tdata: Any,
-    m_tkeep: Any,
-    m_tvalid: Any,
-    m_tready: Any,
-    m_tlast: Any,
+    clk: SignalLike,
+    rst: SignalLike,
+    s_tdata: SignalLike,
+    s_tkeep: SignalLike,
+    s_tvalid: SignalLike,
+    s_tready: SignalLike,
+    s_tlast: SignalLike,
+    s_length: SignalLike,
+    m_tdata: SignalLike,
+    m_tkeep: SignalLike,
+    m_tvalid: SignalLike,
+    m_tready: SignalLike,
+    m_tlast: SignalLike,
     width: int,
     scheduler: AnySchedulerSpec,
-) -> Any:
+) -> Instances:
     """Multiplex `publishers` converters onto the PL→PS DMA stream through a scheduler.
 
     Args:
@@ -113,7 +113,7 @@ def chunk_mux(
     )
 
     @always_comb
-    def select_holder():
+    def select_holder() -> None:
         data = intbv(0)[width:]
         keep = intbv(0)[lanes:]
         for index in range(n):
@@ -127,7 +127,7 @@ def chunk_mux(
         switch.next = offer != 0 and not offer[owner]
 
     @always_comb
-    def find_offered():
+    def find_offered() -> None:
         chosen = 0
         for index in range(n):
             if offer[index]:
@@ -135,7 +135,7 @@ def chunk_mux(
         offered.next = chosen
 
     @always_comb
-    def open_chunk():
+    def open_chunk() -> None:
         # The header of a chunk of the offered publisher: id, flags, its frame length.
         flags = intbv(0)[16:]
         if preemptive:
@@ -152,7 +152,7 @@ def chunk_mux(
         opening.next = assembled
 
     @always_comb
-    def present():
+    def present() -> None:
         # A beat leaves once it is known to end its chunk or its successor is held: the
         # last beat held can then always carry `tlast` when a preemption ends the chunk.
         valid = count == 2 or (count == 1 and head_last)
@@ -161,7 +161,7 @@ def chunk_mux(
         space.next = count < 2 or (valid and m_tready)
 
     @always_comb
-    def drive_outputs():
+    def drive_outputs() -> None:
         m_tvalid.next = out_valid
         m_tlast.next = head_last
         m_tdata.next = head_data
@@ -169,8 +169,9 @@ def chunk_mux(
         ready.next = state == t_state.PAYLOAD and owner_offered and space
         s_tready.next = grant
 
+    # head and tail take the same moves in this one process: a MyHDL process converts whole.
     @always_seq(clk.posedge, reset=rst)
-    def sequence():
+    def sequence() -> None:
         # What enters the buffer this cycle, if anything, and whether the chunk ends on the
         # youngest beat already held (a preemption, or a null last beat folded onto it).
         enter = False

@@ -11,12 +11,11 @@ Between answers the publishers' stream passes through combinationally (no added 
 
 from __future__ import annotations
 
-from typing import Any
-
 from myhdl import Signal, always_comb, always_seq, block, enum, intbv
 
 from rfc.lib.converters.ports import COUNTER_BITS
 from rfc.lib.manager.header import FLAG_END, FLAG_START, STATUS_ID, BusGeometry
+from rfc.lib.types import Instances, SignalLike
 
 
 def status_length(counters: int) -> int:
@@ -24,25 +23,26 @@ def status_length(counters: int) -> int:
     return 4 * counters
 
 
+# AXI-Stream in and out like the manager's other parts; each block names its own ports.
 @block
 def status_inserter(
-    clk: Any,
-    rst: Any,
-    request: Any,
-    counters: Any,
-    s_tdata: Any,
-    s_tkeep: Any,
-    s_tvalid: Any,
-    s_tready: Any,
-    s_tlast: Any,
-    m_tdata: Any,
-    m_tkeep: Any,
-    m_tvalid: Any,
-    m_tready: Any,
-    m_tlast: Any,
+    clk: SignalLike,
+    rst: SignalLike,
+    request: SignalLike,
+    counters: SignalLike,
+    s_tdata: SignalLike,
+    s_tkeep: SignalLike,
+    s_tvalid: SignalLike,
+    s_tready: SignalLike,
+    s_tlast: SignalLike,
+    m_tdata: SignalLike,
+    m_tkeep: SignalLike,
+    m_tvalid: SignalLike,
+    m_tready: SignalLike,
+    m_tlast: SignalLike,
     width: int,
     count: int,
-) -> Any:
+) -> Instances:
     """Pass the publishers' chunks to the DMA and put a status chunk between them on request.
 
     Args:
@@ -83,7 +83,7 @@ def status_inserter(
     if count:
 
         @always_comb
-        def assemble():
+        def assemble() -> None:
             assembled = intbv(0)[bits:]
             assembled[16:0] = STATUS_ID
             assembled[32:16] = flags
@@ -94,14 +94,14 @@ def status_inserter(
     else:
 
         @always_comb
-        def assemble():
+        def assemble() -> None:
             assembled = intbv(0)[bits:]
             assembled[16:0] = STATUS_ID
             assembled[32:16] = flags
             snapshot.next = assembled
 
     @always_comb
-    def drive_outputs():
+    def drive_outputs() -> None:
         if state == t_state.FORWARD:
             m_tdata.next = s_tdata
             m_tkeep.next = s_tkeep
@@ -116,7 +116,7 @@ def status_inserter(
             s_tready.next = 0
 
     @always_seq(clk.posedge, reset=rst)
-    def advance():
+    def advance() -> None:
         wanted = pending or request
         if state == t_state.FORWARD:
             between = not inside

@@ -9,8 +9,7 @@ the holder keeps the grant on a tie and a new message competes in the cycle it a
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from typing import Any
+from collections.abc import Callable, Sequence
 
 from myhdl import Signal, always, always_comb, block, concat, intbv
 
@@ -75,7 +74,7 @@ def countdown_table(
     return count, prioritize, register
 
 
-def countdown_hardware(table: Any, bits: int) -> PolicyHardware:
+def countdown_hardware(table: Callable[..., Instances], bits: int) -> PolicyHardware:
     """The statechart parts of a countdown algorithm (LOEDF, LST) whose table is `table`."""
     return PolicyHardware(
         preemptive=True,

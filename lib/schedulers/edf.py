@@ -25,6 +25,7 @@ from rfc.lib.schedulers.statechart import Lines, PolicyHardware
 from rfc.lib.types import Instances, SignalLike
 
 
+# The ports of every `PolicyHardware.table`; LOEDF loads the deadline.
 @block
 def loedf_table(
     clk: SignalLike,
@@ -46,6 +47,7 @@ def loedf_hardware(spec: SchedulerSpec) -> PolicyHardware:
     return countdown_hardware(loedf_table, spec.counter_bits)
 
 
+# The ports of every `PolicyHardware.table`; ROEDF registers absolute deadlines.
 @block
 def roedf_table(
     clk: SignalLike,

@@ -8,16 +8,15 @@ last, ready in; grant out (docs/schedulers.md, "Interface").
 
 from __future__ import annotations
 
-from typing import Any
-
 from myhdl import ResetSignal, Signal, block, intbv
 
 # Each algorithm's module registers its hardware on import.
 from rfc.lib.schedulers import edf, fixed_priority, lru, lst  # noqa: F401
 from rfc.lib.schedulers.composition import SchedulerBlock, composition
 from rfc.lib.schedulers.registry import policy_hardware
-from rfc.lib.schedulers.spec import AnySchedulerSpec, CompositionSpec
+from rfc.lib.schedulers.spec import AnySchedulerSpec, CompositionSpec, SchedulerSpec
 from rfc.lib.schedulers.statechart import statechart
+from rfc.lib.types import Instances, SignalLike
 from rfc.toolchain import start_new_design
 
 
@@ -29,18 +28,34 @@ def scheduler_block(spec: AnySchedulerSpec) -> SchedulerBlock:
     return composite_scheduler if isinstance(spec, CompositionSpec) else single_scheduler
 
 
+# The ports of every `SchedulerBlock` (a MyHDL block takes every port as a parameter).
 @block
 def single_scheduler(
-    clk: Any, rst: Any, request: Any, last: Any, ready: Any, offer: Any, grant: Any, spec: Any
-) -> Any:
+    clk: SignalLike,
+    rst: SignalLike,
+    request: SignalLike,
+    last: SignalLike,
+    ready: SignalLike,
+    offer: SignalLike,
+    grant: SignalLike,
+    spec: SchedulerSpec,
+) -> Instances:
     """One algorithm: the statechart with the algorithm's parts."""
     return statechart(clk, rst, request, last, ready, offer, grant, spec, policy_hardware(spec))
 
 
+# The ports of every `SchedulerBlock`; a composition's spec.
 @block
 def composite_scheduler(
-    clk: Any, rst: Any, request: Any, last: Any, ready: Any, offer: Any, grant: Any, spec: Any
-) -> Any:
+    clk: SignalLike,
+    rst: SignalLike,
+    request: SignalLike,
+    last: SignalLike,
+    ready: SignalLike,
+    offer: SignalLike,
+    grant: SignalLike,
+    spec: CompositionSpec,
+) -> Instances:
     """A composition of schedulers."""
     return composition(clk, rst, request, last, ready, offer, grant, spec, scheduler_block)
 
@@ -53,20 +68,27 @@ def scheduler_top(spec: AnySchedulerSpec) -> SchedulerBlock:
     """
 
     @block
-    def scheduler(clk: Any, rst: Any, request: Any, last: Any, ready: Any, grant: Any) -> Any:
+    def scheduler(
+        clk: SignalLike,
+        rst: SignalLike,
+        request: SignalLike,
+        last: SignalLike,
+        ready: SignalLike,
+        grant: SignalLike,
+    ) -> Instances:
         offer = Signal(intbv(0)[spec.n :])
         return scheduler_block(spec)(clk, rst, request, last, ready, offer, grant, spec)
 
     return scheduler
 
 
-def top_instance(spec: AnySchedulerSpec) -> Any:
+def top_instance(spec: AnySchedulerSpec) -> Instances:
     """An elaborated `scheduler_top` with fresh port signals (for conversion or simulation)."""
     start_new_design()
     return scheduler_top(spec)(*top_ports(spec))
 
 
-def top_ports(spec: AnySchedulerSpec) -> tuple[Any, ...]:
+def top_ports(spec: AnySchedulerSpec) -> tuple[SignalLike, ...]:
     """Fresh (clk, rst, request, last, ready, grant) signals of the right widths."""
     return (
         Signal(bool(0)),

@@ -17,6 +17,7 @@ from rfc.lib.schedulers.statechart import Lines, PolicyHardware
 from rfc.lib.types import Instances, SignalLike
 
 
+# The ports of every `PolicyHardware.table`; LRU keeps the ranks.
 @block
 def lru_table(
     clk: SignalLike,

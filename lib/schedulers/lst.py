@@ -18,6 +18,7 @@ from rfc.lib.schedulers.statechart import Lines, PolicyHardware
 from rfc.lib.types import Instances, SignalLike
 
 
+# The ports of every `PolicyHardware.table`; LST loads the slack.
 @block
 def lst_table(
     clk: SignalLike,

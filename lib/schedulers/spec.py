@@ -274,7 +274,8 @@ def parse_scheduler(
     return _parse(text.replace(" ", ""), n, transfers, deadlines, counter_bits, text)
 
 
-def _parse(text, n, transfers, deadlines, bits, whole) -> AnySchedulerSpec:
+def _parse(text: str, n: int, transfers: tuple[int, ...], deadlines: tuple[int, ...] | None,
+           bits: int | None, whole: str) -> AnySchedulerSpec:  # fmt: skip
     if "(" not in text:
         return SchedulerSpec.create(text, n, transfers, deadlines, bits)
     head, _, rest = text.partition("(")
@@ -283,13 +284,15 @@ def _parse(text, n, transfers, deadlines, bits, whole) -> AnySchedulerSpec:
             f"cannot read the composition '{whole}': a '(' is not closed",
             hint="write it like LRU(LOEDF,LST) or LRU(LOEDF:128,LST:128)",
         )
-    parts = [_SIZED.fullmatch(part) for part in _split_children(rest[:-1], whole)]
-    names = [match.group(1) for match in parts]
-    sizes = [int(match.group(2)) if match.group(2) else None for match in parts]
-    unsized = [i for i, size in enumerate(sizes) if size is None]
-    left = n - sum(size for size in sizes if size is not None)
-    for rank, i in enumerate(unsized):
-        sizes[i] = left // len(unsized) + (1 if rank >= len(unsized) - left % len(unsized) else 0)
+    parts = [_sized(part) for part in _split_children(rest[:-1], whole)]
+    names = [name for name, _ in parts]
+    left = n - sum(size for _, size in parts if size is not None)
+    unsized = sum(size is None for _, size in parts)
+    # The inputs left over go to the unsized children evenly, the last ones taking one more.
+    shares = iter(
+        left // unsized + (1 if rank >= unsized - left % unsized else 0) for rank in range(unsized)
+    )
+    sizes = [next(shares) if size is None else size for _, size in parts]
     if min(sizes) < 1 or sum(sizes) != n:
         raise RfcError(
             f"the children of '{whole}' must share the {n} inputs, at least one each; "
@@ -306,6 +309,13 @@ def _parse(text, n, transfers, deadlines, bits, whole) -> AnySchedulerSpec:
 
 
 _SIZED = re.compile(r"(.+?)(?::(\d+))?")
+
+
+def _sized(part: str) -> tuple[str, int | None]:
+    """A child's name and the size given after a colon, if any (`part` is not empty)."""
+    match = _SIZED.fullmatch(part)
+    assert match is not None, "every non-empty text matches"
+    return match.group(1), int(match.group(2)) if match.group(2) else None
 
 
 def _split_children(text: str, whole: str) -> list[str]:

@@ -3,11 +3,18 @@
 # under mypy --strict; what MyHDL makes of them (blocks, instances) and its values (Signal,
 # intbv, ...) stay Any, which rfc's own code names rfc.lib.types.SignalLike.
 from collections.abc import Callable
-from typing import Any, ParamSpec
+from typing import Any, ParamSpec, Protocol
 
 _P = ParamSpec("_P")
 
-def block(func: Callable[_P, Any]) -> Callable[_P, Any]: ...
+class _BlockFunction(Protocol[_P]):
+    # A block function as MyHDL wraps it: called like the function; user-defined HDL set on
+    # it (`vhdl_code`, `verilog_code`) replaces the conversion of its body.
+    vhdl_code: str
+    verilog_code: str
+    def __call__(self, *args: _P.args, **kwargs: _P.kwargs) -> Any: ...
+
+def block(func: Callable[_P, Any]) -> _BlockFunction[_P]: ...
 def always_seq(edge: Any, reset: Any) -> Callable[[Callable[[], None]], Any]: ...
 def always_comb(func: Callable[[], None]) -> Any: ...
 def always(*sensitivity: Any) -> Callable[[Callable[..., Any]], Any]: ...

@@ -2,10 +2,11 @@
 
 Robot states from the example's bag maker go through the whole system (subscriber, the
 forward-kinematics accelerator on interface objects, publisher) on ROS 1 as franka_ros
-publishes them and on ROS 2, in the three readings of the logic: the RTL VHDL in GHDL (ROS 1),
-rfc's Verilog in Verilator (ROS 2) and GHDL's synthesized netlist (ROS 1). Every output must
-equal the accelerator's reference bit for bit and NumPy's float64 kinematics within 1e-9, and
-keep its input's header.
+publishes them and on ROS 2, in the three readings of the logic: the RTL VHDL in GHDL, GHDL's
+synthesized netlist and rfc's Verilog in Verilator, all three on the same ROS 1 bag, and the
+Verilog on ROS 2. Every output must equal the accelerator's reference bit for bit (so the
+readings equal each other byte for byte) and NumPy's float64 kinematics within 1e-9, and keep
+its input's header.
 """
 
 from __future__ import annotations
@@ -23,6 +24,7 @@ from tests.support.cli import run_rfc
 ROOT = Path(__file__).resolve().parents[3]
 EXAMPLE = ROOT / "examples/franka_fk"
 STATE, RESULT = "franka_msgs/msg/FrankaState", "franka_fk_msgs/msg/JointTransforms"
+VERILATOR = ("--simulator", "verilator")
 MSG_PATHS = (str(ROOT / "examples/franka/msg"), str(EXAMPLE / "msg"))
 
 
@@ -42,12 +44,13 @@ def example():
     ("spec", "bag", "middleware", "reading"),
     [
         ("franka_fk.yaml", "states.bag", "ros1", ("--simulator", "ghdl")),
-        ("franka_fk_ros2.yaml", "states.mcap", "ros2", ("--simulator", "verilator")),
+        ("franka_fk_ros2.yaml", "states.mcap", "ros2", VERILATOR),
         pytest.param(
             "franka_fk.yaml", "states.bag", "ros1", ("--netlist",), marks=pytest.mark.slow
         ),
+        pytest.param("franka_fk.yaml", "states.bag", "ros1", VERILATOR, marks=pytest.mark.slow),
     ],
-    ids=["ros1-rtl", "ros2-verilog", "ros1-netlist"],
+    ids=["ros1-rtl", "ros2-verilog", "ros1-netlist", "ros1-verilog"],
 )
 def test_robot_states_give_numpys_kinematics_in_the_logic(
     tmp_path, example, spec, bag, middleware, reading

@@ -13,8 +13,6 @@ from __future__ import annotations
 import argparse
 import hashlib
 import json
-import subprocess
-import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -37,22 +35,6 @@ def example_specs() -> list[str]:
 
 
 def hdl_digests(spec: str) -> dict[str, str]:
-    """The sha256 of each VHDL file `spec` (relative to examples/) makes, built in a new process.
-
-    A fresh process each: the image pipeline's manager came out differently after other
-    examples had been built in the same process (state MyHDL keeps between elaborations).
-    """
-    code = (
-        f"import json, sys; sys.path.insert(0, {str(ROOT / 'tools')!r}); "
-        f"import update_hdl_digests as tool; print(json.dumps(tool.built_digests({spec!r})))"
-    )
-    result = subprocess.run(
-        [sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=ROOT
-    )
-    return json.loads(result.stdout.splitlines()[-1])
-
-
-def built_digests(spec: str) -> dict[str, str]:
     """Build `spec` in memory in this process; the sha256 of each VHDL file it makes."""
     from rfc.driver import compile_spec
     from rfc.lower import lower

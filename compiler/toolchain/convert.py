@@ -8,6 +8,7 @@ from pathlib import Path
 from typing import Any
 
 from myhdl import _block as myhdl_block
+from myhdl import _simulator as myhdl_simulator
 
 #: MyHDL's converters are module-level singletons configured by attributes: one at a time.
 _CONVERTER_LOCK = threading.Lock()
@@ -19,11 +20,17 @@ def start_new_design() -> None:
     MyHDL keeps every instance name it ever gave in module-level sets and makes a repeated name
     unique by appending a suffix per repetition, so a process elaborating many designs (a sweep,
     a test worker) gets names that grow without bound until GHDL rejects them, and that differ
-    from run to run. Names need only be unique within one design. Call this before calling the
-    top-level block function.
+    from run to run. It also numbers each block function's instances (``follow290``) by a count
+    of every call in the process, kept until a simulation ends. Names need only be unique within
+    one design, and must not depend on what the process built before (the same spec gives the
+    same VHDL). Call this before calling the top-level block function.
     """
     myhdl_block._name_set.clear()
     myhdl_block._inst_name_set.clear()
+    for decorator in myhdl_simulator._blocks:
+        decorator.calls = 0
+        for bound in list(decorator.bound_functions.values()):
+            bound.calls = 0
 
 
 #: The support package every MyHDL-generated VHDL file uses.

@@ -29,9 +29,8 @@ MEETS_CLOCK = (
 MISSES_CLOCK = {
     "quaternion_to_euler/project_iterative.yaml": "the small core's combinational converters",
 }
-#: Example specs whose critical path still crosses from one block into another, and the two:
-#: a prefix guard hands its replayed beats to its subscriber unregistered.
-CROSSES = {"multi_type/MultiType.yaml": {"scan_sub_guard", "scan_sub"}}
+#: Example specs whose critical path still crosses from one block into another, and the two.
+CROSSES: dict[str, set[str]] = {}
 #: Example specs estimated by tools/bench_estimate.py only: a cold estimate of the Franka core
 #: takes about 12 minutes of CPU (docs/performance.md); it misses 100 MHz (8.39 ns).
 BENCHMARKED = ("franka_fk/franka_fk.yaml", "franka_fk/franka_fk_ros2.yaml")

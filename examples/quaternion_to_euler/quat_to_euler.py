@@ -115,13 +115,11 @@ FIRST_OPERANDS = (W, Z, W, Y, X, Y, Z, W, X) + (SIN,) * (_STEPS - 9)
 SECOND_OPERANDS = (Y, X, X, Z, X, Y, Z, Z, Y) + (GAIN,) * (_STEPS - 9)
 # sin(pitch), summed from the first two products, must be in its register when issued (step 9)
 assert MULTIPLY_PIPELINE + 2 <= MULTIPLY_CYCLES - 1
-#: Cycles from the input handshake until `out_valid` is high: the products, two CORDIC passes
-#: (roll and yaw together, then pitch), each with a start and a capture cycle, and the angles'
-#: conversion to float64.
-LATENCY = MULTIPLY_CYCLES + MULTIPLY_PIPELINE + 2 * (CORDIC.latency + 2) + FIXED_TO_FLOAT_STAGES
-#: and the cycle in which the roll and yaw CORDICs' inputs are rounded from the sums (they are
-#: registered twice: rounded, then offset by the unit)
-LATENCY += 1
+#: Cycles from the input handshake until `out_valid` is high: the products, a cycle in which
+#: the roll and yaw CORDICs' inputs are rounded from the sums (they are registered twice:
+#: rounded, then offset by the unit), two CORDIC passes (roll and yaw together, then pitch),
+#: each with a start and a capture cycle, and the angles' conversion to float64.
+LATENCY = MULTIPLY_CYCLES + MULTIPLY_PIPELINE + 1 + 2 * (CORDIC.latency + 2) + FIXED_TO_FLOAT_STAGES
 #: One quaternion is in flight: after LATENCY cycles the result is offered for at least one
 #: cycle; the core sees the next quaternion on the cycle after the result was taken and takes
 #: it once its components are through the float64 → fixed conversion.

@@ -48,6 +48,8 @@ HANDSHAKE_OUT = ("out_valid", "out_ready")
 TO_FIXED = (FixedFormat(46, 44), FixedFormat(55, 53), FixedFormat(50, 44))
 #: fixed → float64 formats: the two quaternion cores' angles, the Franka engine's words.
 TO_FLOAT = (FixedFormat(49, 46), FixedFormat(63, 60), FixedFormat(50, 44))
+#: Exact products' operands: the pipelined and the iterative quaternion cores' components.
+PRODUCTS = (FixedFormat(46, 44), FixedFormat(55, 53))
 #: The pipelined and the iterative quaternion cores' CORDICs.
 CORDICS = (
     CordicConfig(width=50, iterations=38, angle_frac=46),
@@ -172,16 +174,16 @@ def cases() -> list[Case]:
     ports = _handshake(a=fmt.signal(), b=fmt.signal(), first=Signal(bool(0)), total=fmt.signal())
     order = (*HANDSHAKE_IN, "a", "b", "first", *HANDSHAKE_OUT, "total")
     found.append(Case(fixed_mac, order, ports, (fmt,)))
-    component = FixedFormat(46, 44)  # the pipelined quaternion core's products
-    ports = {
-        "clk": Signal(bool(0)),
-        "rst": ResetSignal(0, active=1, isasync=False),
-        "advance": Signal(bool(0)),
-        "a": component.signal(),
-        "b": component.signal(),
-        "product": FixedFormat(92, 88).signal(),
-    }
-    found.append(Case(registered_product, tuple(ports), ports, ()))
+    for component in PRODUCTS:
+        ports = {
+            "clk": Signal(bool(0)),
+            "rst": ResetSignal(0, active=1, isasync=False),
+            "advance": Signal(bool(0)),
+            "a": component.signal(),
+            "b": component.signal(),
+            "product": FixedFormat(2 * component.width, 2 * component.frac_bits).signal(),
+        }
+        found.append(Case(registered_product, tuple(ports), ports, ()))
     for config in CORDICS:
         for pipelined in (False, True):
             ports = _handshake(

@@ -32,7 +32,7 @@ def quaternion_to_euler(clk: Any, rst: Any, q: Any, euler: Any) -> Any:
 
 @block
 def quaternion_to_euler_iterative(clk: Any, rst: Any, q: Any, euler: Any) -> Any:
-    """As `quaternion_to_euler`, one quaternion at a time in a tenth of the logic."""
+    """As `quaternion_to_euler`, one quaternion at a time in under a third of the logic."""
     return quat_to_euler(
         clk, rst, q.x, q.y, q.z, q.w, q.valid, q.ready,
         euler.x, euler.y, euler.z, euler.valid, euler.ready,

@@ -25,11 +25,16 @@ import numpy as np
 from myhdl import Signal, always_comb, always_seq, block, enum, intbv
 from numpy.typing import ArrayLike, NDArray
 
+from rfc.lib.arith.mac_hdl import exact_multiply, exact_multiply_stages
 from rfc.lib.cordic import CordicConfig, vectoring
 from rfc.lib.cordic.hdl import cordic_vectoring
 from rfc.lib.fixed import QUIET_NAN, FixedFormat, fixed_to_float, float_to_fixed
-from rfc.lib.fixed.hdl import fixed_to_float as fixed_to_float_block
-from rfc.lib.fixed.hdl import float_to_fixed as float_to_fixed_block
+from rfc.lib.fixed.pipeline import (
+    FIXED_TO_FLOAT_STAGES,
+    FLOAT_TO_FIXED_STAGES,
+    fixed_to_float_pipeline,
+    float_to_fixed_pipeline,
+)
 
 
 @dataclass(frozen=True)
@@ -96,21 +101,29 @@ SIN_FRAC = ITERATIVE.sin_frac
 HALF_GAIN_FRAC = ITERATIVE.half_gain_frac
 HALF_GAIN = ITERATIVE.half_gain
 
+#: Register stages between issuing a product and summing it: the operands, then the exact
+#: product in DSP48E1-sized limbs and a registered adder tree (`exact_multiply`), so that no
+#: path runs through a wide multiply and its sum at once.
+MULTIPLY_PIPELINE = 1 + exact_multiply_stages(COMPONENT.width, COMPONENT.width)
 #: Products issued one per cycle, by their operands: components x, y, z, w, then sin(pitch) and
 #: gain/2. wy and zx come first, so that sin(pitch) is summed when the tenth product, its
 #: scaling, needs it. The tables run on past the tenth entry (the step counter does; unused).
 X, Y, Z, W, SIN, GAIN = range(6)
-FIRST_OPERANDS = (W, Z, W, Y, X, Y, Z, W, X, SIN, SIN, SIN, SIN, SIN, SIN, SIN)
-SECOND_OPERANDS = (Y, X, X, Z, X, Y, Z, Z, Y, GAIN, GAIN, GAIN, GAIN, GAIN, GAIN, GAIN)
 MULTIPLY_CYCLES = 10
-#: Register stages between issuing a product and summing it (operands, product).
-MULTIPLY_PIPELINE = 2
-#: Cycles from the input handshake until `out_valid` is high: the products, then two CORDIC
-#: passes (roll and yaw together, then pitch), each with a start and a capture cycle.
-LATENCY = MULTIPLY_CYCLES + MULTIPLY_PIPELINE + 2 * (CORDIC.latency + 2)
+_STEPS = MULTIPLY_CYCLES + MULTIPLY_PIPELINE + 1
+FIRST_OPERANDS = (W, Z, W, Y, X, Y, Z, W, X) + (SIN,) * (_STEPS - 9)
+SECOND_OPERANDS = (Y, X, X, Z, X, Y, Z, Z, Y) + (GAIN,) * (_STEPS - 9)
+# sin(pitch), summed from the first two products, must be in its register when issued (step 9)
+assert MULTIPLY_PIPELINE + 2 <= MULTIPLY_CYCLES - 1
+#: Cycles from the input handshake until `out_valid` is high: the products, a cycle in which
+#: the roll and yaw CORDICs' inputs are rounded from the sums (they are registered twice:
+#: rounded, then offset by the unit), two CORDIC passes (roll and yaw together, then pitch),
+#: each with a start and a capture cycle, and the angles' conversion to float64.
+LATENCY = MULTIPLY_CYCLES + MULTIPLY_PIPELINE + 1 + 2 * (CORDIC.latency + 2) + FIXED_TO_FLOAT_STAGES
 #: One quaternion is in flight: after LATENCY cycles the result is offered for at least one
-#: cycle, and the core takes the next quaternion on the cycle after the result was taken.
-INITIATION_INTERVAL = LATENCY + 2
+#: cycle; the core sees the next quaternion on the cycle after the result was taken and takes
+#: it once its components are through the float64 → fixed conversion.
+INITIATION_INTERVAL = LATENCY + 2 + FLOAT_TO_FIXED_STAGES
 
 
 def _round(value: int, drop: int) -> int:
@@ -168,10 +181,13 @@ def _signed(bits: int) -> Signal:
 def quat_to_euler(clk, rst, x, y, z, w, in_valid, in_ready, roll, pitch, yaw, out_valid, out_ready):
     """Quaternion (x, y, z, w) → Euler angles (roll, pitch, yaw), float64 in and out.
 
-    Latency `LATENCY` (96) cycles from the input handshake to `out_valid`, the same for every
-    input; one quaternion in flight, so the initiation interval is `INITIATION_INTERVAL` (98)
-    cycles when results are taken at once. Results stay on the outputs until taken (`out_valid`
-    and `out_ready` high on a rising edge).
+    Latency `LATENCY` (106) cycles from the input handshake to `out_valid`, the same for every
+    input; one quaternion in flight, so the initiation interval is `INITIATION_INTERVAL` (113)
+    cycles when results are taken at once. The float64 ↔ fixed conversions are pipelines of
+    short stages (`rfc.lib.fixed.pipeline`), so that no path runs through a whole conversion:
+    the core takes a quaternion (`in_ready`) only once its components are through them, so
+    they must stay on the inputs while `in_valid` is high, as the handshake requires. Results
+    stay on the outputs until taken (`out_valid` and `out_ready` high on a rising edge).
 
     Accuracy on unit quaternions (docs/accelerators.md): within 2e-12 rad of NumPy's
     double-precision formulas, and within 5e-9 rad where pitch is 1e-7 to 1e-3 rad from ±π/2;
@@ -196,24 +212,30 @@ def quat_to_euler(clk, rst, x, y, z, w, in_valid, in_ready, roll, pitch, yaw, ou
         out_ready: Input, the consumer takes the result on this cycle.
     """
     state_t = enum(
-        "IDLE", "PRODUCTS", "ROLL_YAW_START", "ROLL_YAW_BUSY", "PITCH_START", "PITCH_BUSY", "DONE"
-    )
+        "IDLE", "CONVERT", "PRODUCTS", "ROUND", "ROLL_YAW_START", "ROLL_YAW_BUSY", "PITCH_START",
+        "PITCH_BUSY", "TO_FLOAT", "DONE",
+    )  # fmt: skip
     state = Signal(state_t.IDLE)
     cx, cy, cz, cw = (COMPONENT.signal() for _ in range(4))
     over_x, over_y, over_z, over_w = (Signal(bool(0)) for _ in range(4))
     nan_x, nan_y, nan_z, nan_w = (Signal(bool(0)) for _ in range(4))
+    always_on = Signal(bool(1))
     converters = [
-        float_to_fixed_block(x, cx, over_x, nan_x, COMPONENT),
-        float_to_fixed_block(y, cy, over_y, nan_y, COMPONENT),
-        float_to_fixed_block(z, cz, over_z, nan_z, COMPONENT),
-        float_to_fixed_block(w, cw, over_w, nan_w, COMPONENT),
+        float_to_fixed_pipeline(clk, always_on, x, cx, over_x, nan_x, COMPONENT),
+        float_to_fixed_pipeline(clk, always_on, y, cy, over_y, nan_y, COMPONENT),
+        float_to_fixed_pipeline(clk, always_on, z, cz, over_z, nan_z, COMPONENT),
+        float_to_fixed_pipeline(clk, always_on, w, cw, over_w, nan_w, COMPONENT),
     ]
+    # cycles the components have been on the inputs, up to a conversion's stages
+    waited = Signal(intbv(0, min=0, max=FLOAT_TO_FIXED_STAGES + 1))
+    converted = FLOAT_TO_FIXED_STAGES - 1
+    to_float_last = FIXED_TO_FLOAT_STAGES - 1
     qx, qy, qz, qw = (COMPONENT.signal() for _ in range(4))
     out_of_range = Signal(bool(0))
     bad_input = Signal(bool(0))
 
     # Shared multiplier: operands, product, five sums and the scaled sin(pitch).
-    step = Signal(intbv(0, min=0, max=16))
+    step = Signal(intbv(0, min=0, max=_STEPS))
     operand_a = COMPONENT.signal()
     operand_b = COMPONENT.signal()
     product = _signed(2 * COMPONENT.width)
@@ -232,6 +254,7 @@ def quat_to_euler(clk, rst, x, y, z, w, in_valid, in_ready, roll, pitch, yaw, ou
     a_in_valid, a_in_ready, a_out_valid, a_out_ready = (Signal(bool(0)) for _ in range(4))
     b_in_valid, b_in_ready, b_out_valid, b_out_ready = (Signal(bool(0)) for _ in range(4))
     a_x, a_y, b_x, b_y = (_signed(CORDIC.width) for _ in range(4))
+    a_rounded, b_rounded, a_roll, b_roll, pitch_y = (_signed(CORDIC.width) for _ in range(5))
     a_angle, b_angle = _signed(CORDIC.angle_width), _signed(CORDIC.angle_width)
     a_magnitude = Signal(intbv(0)[CORDIC.magnitude_width :])
     b_magnitude = Signal(intbv(0)[CORDIC.magnitude_width :])
@@ -266,7 +289,7 @@ def quat_to_euler(clk, rst, x, y, z, w, in_valid, in_ready, roll, pitch, yaw, ou
     roll_angle, pitch_angle, yaw_angle = (ANGLE.signal() for _ in range(3))
     roll_bits, pitch_bits, yaw_bits = (Signal(intbv(0)[64:]) for _ in range(3))
     to_float = [
-        fixed_to_float_block(angle, bits, ANGLE)
+        fixed_to_float_pipeline(clk, always_on, angle, bits, ANGLE)
         for angle, bits in zip(
             (roll_angle, pitch_angle, yaw_angle), (roll_bits, pitch_bits, yaw_bits), strict=True
         )
@@ -277,6 +300,8 @@ def quat_to_euler(clk, rst, x, y, z, w, in_valid, in_ready, roll, pitch, yaw, ou
     sum_width = SUM_WIDTH
     cordic_width = CORDIC.width
     last_accumulate = MULTIPLY_CYCLES + MULTIPLY_PIPELINE - 1
+    p = MULTIPLY_PIPELINE
+    multiply = exact_multiply(clk, rst, always_on, operand_a, operand_b, product)
 
     @always_comb
     def operand_indices():
@@ -287,29 +312,35 @@ def quat_to_euler(clk, rst, x, y, z, w, in_valid, in_ready, roll, pitch, yaw, ou
     def flags():
         out_of_range.next = over_x or over_y or over_z or over_w or nan_x or nan_y or nan_z or nan_w
 
-    @always_comb
-    def cordic_inputs():
-        # 1 - 2·sum, 2·sum and 2·(wy - zx), rounded half up from the exact sums.
+    @always_seq(clk.posedge, reset=rst)
+    def round_sums():
+        # 1 - 2·sum, 2·sum and 2·(wy - zx), rounded half up from the exact sums, registered
+        # twice (rounded, then offset by the unit): the CORDICs start from registers
         value = intbv(0, min=-(1 << sum_width), max=1 << sum_width)
         unit = intbv(0, min=-(1 << (cordic_width - 1)), max=1 << (cordic_width - 1))
         unit[CORDIC_FRAC] = 1
-        a_roll = intbv(0, min=-(1 << (cordic_width - 1)), max=1 << (cordic_width - 1))
-        b_roll = intbv(0, min=-(1 << (cordic_width - 1)), max=1 << (cordic_width - 1))
         value[:] = -sum_roll_a
-        a_roll[:] = ((value >> (drop - 2)) + 1) >> 1
+        a_rounded.next = ((value >> (drop - 2)) + 1) >> 1
         value[:] = sum_roll_b
-        b_roll[:] = ((value >> (drop - 2)) + 1) >> 1
+        b_roll.next = ((value >> (drop - 2)) + 1) >> 1
         value[:] = -sum_yaw_a
-        b_x.next = unit + (((value >> (drop - 2)) + 1) >> 1)
+        b_rounded.next = ((value >> (drop - 2)) + 1) >> 1
         value[:] = sum_yaw_b
         b_y.next = ((value >> (drop - 2)) + 1) >> 1
+        pitch_y.next = ((scaled_sin >> (scaled_drop - 1)) + 1) >> 1
+        a_roll.next = unit + a_rounded
+        b_x.next = unit + b_rounded
+
+    @always_comb
+    def cordic_inputs():
+        value = intbv(0, min=-(1 << sum_width), max=1 << sum_width)
         value[:] = sum_sin
         sin_pitch.next = ((value >> (sin_drop - 2)) + 1) >> 1
         if state == state_t.PITCH_START or state == state_t.PITCH_BUSY:
             a_x.next = lengths >> 2
-            a_y.next = ((scaled_sin >> (scaled_drop - 1)) + 1) >> 1
+            a_y.next = pitch_y
         else:
-            a_x.next = unit + a_roll
+            a_x.next = a_roll
             a_y.next = b_roll
         a_in_valid.next = state == state_t.ROLL_YAW_START or state == state_t.PITCH_START
         b_in_valid.next = state == state_t.ROLL_YAW_START
@@ -319,16 +350,20 @@ def quat_to_euler(clk, rst, x, y, z, w, in_valid, in_ready, roll, pitch, yaw, ou
         b_out_ready.next = state == state_t.ROLL_YAW_BUSY and a_out_valid
 
     @always_seq(clk.posedge, reset=rst)
-    def multiply():
+    def operands_in():
         if state == state_t.PRODUCTS:
             operand_a.next = selected_a
             operand_b.next = selected_b
-            product.next = operand_a * operand_b
 
     @always_seq(clk.posedge, reset=rst)
     def control():
         if state == state_t.IDLE:
             if in_valid:
+                waited.next = 0
+                state.next = state_t.CONVERT
+        elif state == state_t.CONVERT:
+            waited.next = waited + 1
+            if waited == converted:
                 qx.next = cx
                 qy.next = cy
                 qz.next = cz
@@ -342,26 +377,28 @@ def quat_to_euler(clk, rst, x, y, z, w, in_valid, in_ready, roll, pitch, yaw, ou
                 step.next = 0
                 state.next = state_t.PRODUCTS
         elif state == state_t.PRODUCTS:
-            # Product k was issued at step k and is summed at step k + 2.
-            if step == 2:
+            # Product k was issued at step k and is summed at step k + MULTIPLY_PIPELINE (p).
+            if step == p:
                 sum_sin.next = sum_sin + product
-            elif step == 3:
+            elif step == p + 1:
                 sum_sin.next = sum_sin - product
-            elif step == 4 or step == 5:
+            elif step == p + 2 or step == p + 3:
                 sum_roll_b.next = sum_roll_b + product
-            elif step == 6:
+            elif step == p + 4:
                 sum_roll_a.next = sum_roll_a + product
-            elif step == 7:
+            elif step == p + 5:
                 sum_roll_a.next = sum_roll_a + product
                 sum_yaw_a.next = sum_yaw_a + product
-            elif step == 8:
+            elif step == p + 6:
                 sum_yaw_a.next = sum_yaw_a + product
-            elif step == 9 or step == 10:
+            elif step == p + 7 or step == p + 8:
                 sum_yaw_b.next = sum_yaw_b + product
             elif step == last_accumulate:
                 scaled_sin.next = product
-                state.next = state_t.ROLL_YAW_START
+                state.next = state_t.ROUND
             step.next = step + 1
+        elif state == state_t.ROUND:
+            state.next = state_t.ROLL_YAW_START
         elif state == state_t.ROLL_YAW_START:
             if a_in_ready and b_in_ready:
                 state.next = state_t.ROLL_YAW_BUSY
@@ -377,6 +414,11 @@ def quat_to_euler(clk, rst, x, y, z, w, in_valid, in_ready, roll, pitch, yaw, ou
         elif state == state_t.PITCH_BUSY:
             if a_out_valid:
                 pitch_angle.next = a_angle
+                waited.next = 0
+                state.next = state_t.TO_FLOAT
+        elif state == state_t.TO_FLOAT:
+            waited.next = waited + 1
+            if waited == to_float_last:
                 state.next = state_t.DONE
         elif out_ready:
             state.next = state_t.IDLE
@@ -385,7 +427,7 @@ def quat_to_euler(clk, rst, x, y, z, w, in_valid, in_ready, roll, pitch, yaw, ou
     def outputs():
         nan = intbv(0)[64:]
         nan[63:51] = 0xFFF
-        in_ready.next = state == state_t.IDLE
+        in_ready.next = state == state_t.CONVERT and waited == converted
         out_valid.next = state == state_t.DONE
         if bad_input:
             roll.next = nan
@@ -405,7 +447,9 @@ def quat_to_euler(clk, rst, x, y, z, w, in_valid, in_ready, roll, pitch, yaw, ou
         operand_indices,
         flags,
         cordic_inputs,
+        operands_in,
         multiply,
+        round_sums,
         control,
         outputs,
     )

@@ -31,6 +31,10 @@ from rfc.lib.converters.ram import ram
 from rfc.lib.converters.steps import Plan
 from rfc.lib.converters.subscriber import rfc_subscriber
 from rfc.lib.converters.toplevel import port_signals
+from rfc.lib.slice import parts_slice
+
+#: A stream's signals, by the suffix of their ports' names.
+STREAM = ("tdata", "tkeep", "tvalid", "tready", "tlast")
 
 
 class _State(IntEnum):
@@ -74,9 +78,8 @@ def frame_guard(plan: Plan, depth: int, **ports: Any) -> Any:
     s_tdata, s_tkeep, s_tvalid, s_tready, s_tlast = (
         ports[f"s_axis_{n}"] for n in ("tdata", "tkeep", "tvalid", "tready", "tlast")
     )
-    m_tdata, m_tkeep, m_tvalid, m_tready, m_tlast = (
-        ports[f"m_axis_{n}"] for n in ("tdata", "tkeep", "tvalid", "tready", "tlast")
-    )
+    m_tdata, m_tkeep, m_tvalid, m_tready, m_tlast = guard_stream(ports)
+    outer = tuple(ports[f"m_axis_{n}"] for n in STREAM)
     full_keep = (1 << plan.width) - 1
     state = Signal(intbv(0, min=0, max=len(_State)))
     written = Signal(intbv(0, min=0, max=depth + 1))
@@ -178,7 +181,8 @@ def frame_guard(plan: Plan, depth: int, **ports: Any) -> Any:
         for r in DROP_REASONS
     ]
     held = [held_high(clk, rst, ready) for ready in readies]  # the checker takes everything
-    return parser, take, give, control, memory, counters, held
+    out = registered_output(clk, rst, (m_tdata, m_tkeep, m_tvalid, m_tready, m_tlast), outer)
+    return parser, take, give, control, memory, counters, held, out
 
 
 @block
@@ -190,3 +194,27 @@ def held_high(clk: Any, rst: Any, signal: Any) -> Any:
         signal.next = 1
 
     return hold
+
+
+def guard_stream(ports: dict[str, Any]) -> tuple[Any, ...]:
+    """Signals like the guard's ``m_axis`` ports (tdata, tkeep, tvalid, tready, tlast)."""
+    return tuple(
+        Signal(intbv(0)[len(ports[f"m_axis_{n}"]) :]) if n in ("tdata", "tkeep")
+        else Signal(bool(0))
+        for n in STREAM
+    )  # fmt: skip
+
+
+@block
+def registered_output(clk: Any, rst: Any, inner: tuple[Any, ...], outer: tuple[Any, ...]) -> Any:
+    """Hand the stream a guard drives (`inner`) on to its ports (`outer`) through a slice.
+
+    Both are (tdata, tkeep, tvalid, tready, tlast). Everything the guard hands its subscriber
+    then comes from a flip-flop: no path runs from the guard's logic into the subscriber's. The
+    slice adds a cycle of latency, not of throughput.
+    """
+    data, keep, valid, ready, last = inner
+    m_data, m_keep, m_valid, m_ready, m_last = outer
+    return parts_slice(
+        clk, rst, [data, keep, last], valid, ready, [m_data, m_keep, m_last], m_valid, m_ready
+    )

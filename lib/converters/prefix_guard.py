@@ -31,7 +31,7 @@ from myhdl import ResetSignal, Signal, always, always_comb, always_seq, block, i
 
 from rfc.lib.converters.chunk_length import LENGTH_BITS
 from rfc.lib.converters.frame_length import frame_length_circuit, length_formula
-from rfc.lib.converters.guard import guard_ports, held_high
+from rfc.lib.converters.guard import STREAM, guard_ports, guard_stream, held_high, registered_output
 from rfc.lib.converters.malformed import DROP_REASONS, Reason, counter_name, reason_counter
 from rfc.lib.converters.ports import (
     COUNTER_BITS,
@@ -80,9 +80,8 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
     s_tdata, s_tkeep, s_tvalid, s_tready, s_tlast = (
         ports[f"s_axis_{n}"] for n in ("tdata", "tkeep", "tvalid", "tready", "tlast")
     )
-    m_tdata, m_tkeep, m_tvalid, m_tready, m_tlast = (
-        ports[f"m_axis_{n}"] for n in ("tdata", "tkeep", "tvalid", "tready", "tlast")
-    )
+    m_tdata, m_tkeep, m_tvalid, m_tready, m_tlast = guard_stream(ports)
+    outer = tuple(ports[f"m_axis_{n}"] for n in STREAM)
     header = ports[DECLARED]
     declared = Signal(intbv(0)[LENGTH_BITS:])  # taken with the frame's first beat
     last = checking.steps[-2]
@@ -267,6 +266,7 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
             overflow.next = False
 
     memory = ram(clk, w_enable, address, s_tdata, r_enable, r_address, r_data, depth)
+    out = registered_output(clk, rst, (m_tdata, m_tkeep, m_tvalid, m_tready, m_tlast), outer)
     counters = [
         reason_counter(clk, rst, drop, drop, reason, ports[counter_name(r)], int(r))
         for r in DROP_REASONS
@@ -274,5 +274,5 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
     held = [held_high(clk, rst, ready) for ready in readies]  # the checker takes everything
     return (
         parser, sizing, take, pad, hold_size, judge, give, clear_checker, control, memory,
-        counters, held,
+        counters, held, out,
     )  # fmt: skip

@@ -10,12 +10,14 @@ from __future__ import annotations
 from myhdl import Signal, block
 
 from rfc.lib.arith.pipeline import delay_line, stall_control
+from rfc.lib.fixed import FixedFormat
 from rfc.lib.fixed.pipeline import (
     FIXED_TO_FLOAT_STAGES,
     FLOAT_TO_FIXED_STAGES,
     fixed_to_float_pipeline,
     float_to_fixed_pipeline,
 )
+from rfc.lib.types import Instances, SignalLike
 
 #: Cycles from the input handshake to `out_valid` (the handshake loads the first stage).
 FLOAT_TO_FIXED_LATENCY = FLOAT_TO_FIXED_STAGES - 1
@@ -25,8 +27,18 @@ FIXED_TO_FLOAT_LATENCY = FIXED_TO_FLOAT_STAGES - 1
 
 @block
 def float_to_fixed_pipelined(
-    clk, rst, in_valid, in_ready, bits, out_valid, out_ready, raw, overflow, invalid, fmt
-):
+    clk: SignalLike,
+    rst: SignalLike,
+    in_valid: SignalLike,
+    in_ready: SignalLike,
+    bits: SignalLike,
+    out_valid: SignalLike,
+    out_ready: SignalLike,
+    raw: SignalLike,
+    overflow: SignalLike,
+    invalid: SignalLike,
+    fmt: FixedFormat,
+) -> Instances:
     """Float64 bit pattern → raw `fmt`, ties to even, saturating (`ieee754.float_to_fixed`).
 
     Args:
@@ -50,7 +62,17 @@ def float_to_fixed_pipelined(
 
 
 @block
-def fixed_to_float_pipelined(clk, rst, in_valid, in_ready, raw, out_valid, out_ready, bits, fmt):
+def fixed_to_float_pipelined(
+    clk: SignalLike,
+    rst: SignalLike,
+    in_valid: SignalLike,
+    in_ready: SignalLike,
+    raw: SignalLike,
+    out_valid: SignalLike,
+    out_ready: SignalLike,
+    bits: SignalLike,
+    fmt: FixedFormat,
+) -> Instances:
     """Raw `fmt` → float64 bit pattern, ties to even (`ieee754.fixed_to_float`).
 
     Args:

@@ -15,6 +15,7 @@ from rfc.lib.arith.engine import WORD_WRITERS, Op, Program
 from rfc.lib.arith.mac_hdl import mac_pipeline
 from rfc.lib.arith.sincos_hdl import sincos_iterative
 from rfc.lib.fixed.hdl import fixed_to_float, float_to_fixed
+from rfc.lib.types import Instances, SignalLike
 
 
 def _unsigned(limit: int) -> Signal:
@@ -22,7 +23,17 @@ def _unsigned(limit: int) -> Signal:
 
 
 @block
-def engine(clk, rst, in_valid, in_ready, inputs, out_valid, out_ready, outputs, program: Program):
+def engine(
+    clk: SignalLike,
+    rst: SignalLike,
+    in_valid: SignalLike,
+    in_ready: SignalLike,
+    inputs: SignalLike,
+    out_valid: SignalLike,
+    out_ready: SignalLike,
+    outputs: SignalLike,
+    program: Program,
+) -> Instances:
     """Run `program` on each message of `inputs`; results on `outputs` (bits of `engine.run`).
 
     Args:
@@ -133,11 +144,11 @@ def engine(clk, rst, in_valid, in_ready, inputs, out_valid, out_ready, outputs, 
         )
 
         @always_comb
-        def narrow():
+        def narrow() -> None:
             angle.next = read_a[angle_bits:].signed()
 
         @always_seq(clk.posedge, reset=rst)
-        def take():
+        def take() -> None:
             if sc_out_valid and sc_out_ready:
                 cos_word.next = sc_cos
                 sin_word.next = sc_sin
@@ -145,7 +156,7 @@ def engine(clk, rst, in_valid, in_ready, inputs, out_valid, out_ready, outputs, 
         units += [narrow, take]
 
     @always_comb
-    def decode():
+    def decode() -> None:
         op.next = op_rom[pc]
         ra.next = a_rom[pc]
         rb.next = b_rom[pc]
@@ -156,16 +167,16 @@ def engine(clk, rst, in_valid, in_ready, inputs, out_valid, out_ready, outputs, 
         const_index.next = index_rom[pc]
 
     @always_comb
-    def lookup():
+    def lookup() -> None:
         const_value.next = const_rom[const_index]
 
     @always_comb
-    def read():
+    def read() -> None:
         read_a.next = memory[ra]
         read_b.next = memory[rb]
 
     @always_comb
-    def control():
+    def control() -> None:
         in_ready.next = not running and not full
         out_valid.next = full
         capture.next = in_valid and not running and not full
@@ -185,7 +196,7 @@ def engine(clk, rst, in_valid, in_ready, inputs, out_valid, out_ready, outputs, 
             put_value.next = sin_word
 
     @always_comb
-    def select_write():
+    def select_write() -> None:
         write_enable.next = w4 or put
         if w4:
             write_address.next = d4
@@ -196,12 +207,12 @@ def engine(clk, rst, in_valid, in_ready, inputs, out_valid, out_ready, outputs, 
 
     # One write statement, so that synthesis infers a memory (distributed RAM).
     @always(clk.posedge)
-    def write():
+    def write() -> None:
         if write_enable:
             memory[write_address].next = write_data
 
     @always_seq(clk.posedge, reset=rst)
-    def sequence():
+    def sequence() -> None:
         w1.next = running and op == mac_op and last
         d1.next = dst
         w2.next = w1
@@ -231,7 +242,7 @@ def engine(clk, rst, in_valid, in_ready, inputs, out_valid, out_ready, outputs, 
             pc.next = pc + 1
 
     @always_comb
-    def chain_tail():
+    def chain_tail() -> None:
         tail_out.next = stored
 
     return (loading, storing, to_fixed, to_float, mac, units, decode, lookup, read, control,
@@ -239,11 +250,19 @@ def engine(clk, rst, in_valid, in_ready, inputs, out_valid, out_ready, outputs, 
 
 
 @block
-def chain_stage(clk, rst, capture, shift, source, following, stage):
+def chain_stage(
+    clk: SignalLike,
+    rst: SignalLike,
+    capture: SignalLike,
+    shift: SignalLike,
+    source: SignalLike,
+    following: SignalLike,
+    stage: SignalLike,
+) -> Instances:
     """One element of the input chain: the port's value on capture, the next one's on shift."""
 
     @always_seq(clk.posedge, reset=rst)
-    def hold():
+    def hold() -> None:
         if capture:
             stage.next = source
         elif shift:
@@ -253,27 +272,34 @@ def chain_stage(clk, rst, capture, shift, source, following, stage):
 
 
 @block
-def output_stage(clk, rst, shift, following, stage, port):
+def output_stage(
+    clk: SignalLike,
+    rst: SignalLike,
+    shift: SignalLike,
+    following: SignalLike,
+    stage: SignalLike,
+    port: SignalLike,
+) -> Instances:
     """One element of the output chain, shown on its port."""
 
     @always_seq(clk.posedge, reset=rst)
-    def hold():
+    def hold() -> None:
         if shift:
             stage.next = following
 
     @always_comb
-    def show():
+    def show() -> None:
         port.next = stage
 
     return hold, show
 
 
 @block
-def copy(source, target):
+def copy(source: SignalLike, target: SignalLike) -> Instances:
     """``target = source`` (comb)."""
 
     @always_comb
-    def assign():
+    def assign() -> None:
         target.next = source
 
     return assign

@@ -14,6 +14,7 @@ from myhdl import Signal, always_comb, always_seq, block, intbv
 from rfc.lib.arith.mac import MAC_GUARD_BITS
 from rfc.lib.arith.pipeline import stage_register, stall_control
 from rfc.lib.fixed import FixedFormat
+from rfc.lib.types import Instances, SignalLike
 
 #: Operand (A/B), product (M), P and rounded-result registers: Yosys folds the first three into
 #: a DSP48E1 (AREG, BREG, MREG, PREG all 1) when the operands fit one slice (25 x 18 signed).
@@ -27,7 +28,18 @@ def _signed(bits: int) -> Signal:
 
 
 @block
-def fixed_multiply(clk, rst, in_valid, in_ready, a, b, out_valid, out_ready, product, fmt):
+def fixed_multiply(
+    clk: SignalLike,
+    rst: SignalLike,
+    in_valid: SignalLike,
+    in_ready: SignalLike,
+    a: SignalLike,
+    b: SignalLike,
+    out_valid: SignalLike,
+    out_ready: SignalLike,
+    product: SignalLike,
+    fmt: FixedFormat,
+) -> Instances:
     """``a * b`` in `fmt`, rounded half up and saturated (`rfc.lib.arith.mac.multiply`).
 
     Args:
@@ -50,7 +62,7 @@ def fixed_multiply(clk, rst, in_valid, in_ready, a, b, out_valid, out_ready, pro
     rounding = round_to_format(held, rounded, fmt)
 
     @always_seq(clk.posedge, reset=rst)
-    def stages():
+    def stages() -> None:
         if advance:
             a1.next = a
             b1.next = b
@@ -68,7 +80,19 @@ def fixed_multiply(clk, rst, in_valid, in_ready, a, b, out_valid, out_ready, pro
 
 
 @block
-def fixed_mac(clk, rst, in_valid, in_ready, a, b, first, out_valid, out_ready, total, fmt):
+def fixed_mac(
+    clk: SignalLike,
+    rst: SignalLike,
+    in_valid: SignalLike,
+    in_ready: SignalLike,
+    a: SignalLike,
+    b: SignalLike,
+    first: SignalLike,
+    out_valid: SignalLike,
+    out_ready: SignalLike,
+    total: SignalLike,
+    fmt: FixedFormat,
+) -> Instances:
     """Running ``Σ a * b`` in `fmt`: one result per pair, `first` starts a new sum.
 
     Each result is the sum since the last pair with `first` set, rounded half up and saturated
@@ -98,7 +122,18 @@ def fixed_mac(clk, rst, in_valid, in_ready, a, b, first, out_valid, out_ready, t
 
 
 @block
-def mac_pipeline(clk, rst, advance, valid_in, a, b, first, valid_out, result, fmt):
+def mac_pipeline(
+    clk: SignalLike,
+    rst: SignalLike,
+    advance: SignalLike,
+    valid_in: SignalLike,
+    a: SignalLike,
+    b: SignalLike,
+    first: SignalLike,
+    valid_out: SignalLike,
+    result: SignalLike,
+    fmt: FixedFormat,
+) -> Instances:
     """The multiply-accumulate datapath without handshakes: it moves when `advance` is high.
 
     A pair entering on a cycle with `advance` high comes out `MAC_LATENCY` advancing cycles
@@ -112,7 +147,7 @@ def mac_pipeline(clk, rst, advance, valid_in, a, b, first, valid_out, result, fm
     rounding = round_to_format(total, rounded, fmt)
 
     @always_seq(clk.posedge, reset=rst)
-    def stages():
+    def stages() -> None:
         if advance:
             a1.next = a
             b1.next = b
@@ -134,7 +169,7 @@ def mac_pipeline(clk, rst, advance, valid_in, a, b, first, valid_out, result, fm
 
 
 @block
-def round_to_format(wide, narrow, fmt: FixedFormat):
+def round_to_format(wide: SignalLike, narrow: SignalLike, fmt: FixedFormat) -> Instances:
     """A value with ``2 * fmt.frac_bits`` fraction bits, rounded half up and saturated (comb)."""
     bits = len(wide) + 1
     shift = fmt.frac_bits
@@ -143,7 +178,7 @@ def round_to_format(wide, narrow, fmt: FixedFormat):
     low, high = fmt.signal(fmt.min_raw), fmt.signal(fmt.max_raw)
 
     @always_comb
-    def round_half_up():
+    def round_half_up() -> None:
         v = intbv(0, min=-(1 << (bits - 1)), max=1 << (bits - 1))
         v[:] = wide + half
         v[:] = v >> shift
@@ -175,7 +210,14 @@ def exact_multiply_stages(a_width: int, b_width: int) -> int:
 
 
 @block
-def exact_multiply(clk, rst, advance, a, b, product):
+def exact_multiply(
+    clk: SignalLike,
+    rst: SignalLike,
+    advance: SignalLike,
+    a: SignalLike,
+    b: SignalLike,
+    product: SignalLike,
+) -> Instances:
     """``a * b`` exact (`product` as wide as both operands), `exact_multiply_stages` later.
 
     The handshake-free product for larger pipelines. Operands wider than a DSP48E1 are cut into
@@ -221,28 +263,35 @@ def exact_multiply(clk, rst, advance, a, b, product):
 
 
 @block
-def limb_cut(operand, limb, low: int, bits: int):
+def limb_cut(operand: SignalLike, limb: SignalLike, low: int, bits: int) -> Instances:
     """One limb of a signed operand: the top one signed, the others unsigned (comb)."""
     top = low + bits == len(operand)
 
     @always_comb
-    def signed_top():
+    def signed_top() -> None:
         limb.next = operand >> low
 
     @always_comb
-    def unsigned_low():
+    def unsigned_low() -> None:
         limb.next = operand[low + bits : low]
 
     return signed_top if top else unsigned_low
 
 
 @block
-def limb_product(clk, rst, advance, x, y, held):
+def limb_product(
+    clk: SignalLike,
+    rst: SignalLike,
+    advance: SignalLike,
+    x: SignalLike,
+    y: SignalLike,
+    held: SignalLike,
+) -> Instances:
     """A product that fits one DSP48E1, through its M and P registers."""
     full = Signal(held.val)
 
     @always_seq(clk.posedge, reset=rst)
-    def stages():
+    def stages() -> None:
         if advance:
             full.next = x * y
             held.next = full
@@ -251,11 +300,19 @@ def limb_product(clk, rst, advance, x, y, held):
 
 
 @block
-def shifted_add(clk, rst, advance, x, y, shift: int, total):
+def shifted_add(
+    clk: SignalLike,
+    rst: SignalLike,
+    advance: SignalLike,
+    x: SignalLike,
+    y: SignalLike,
+    shift: int,
+    total: SignalLike,
+) -> Instances:
     """``x + (y << shift)``, registered."""
 
     @always_seq(clk.posedge, reset=rst)
-    def add():
+    def add() -> None:
         if advance:
             total.next = x + (y << shift)
 

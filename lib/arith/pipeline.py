@@ -11,13 +11,21 @@ from itertools import pairwise
 
 from myhdl import Signal, always_comb, always_seq, block, intbv
 
+from rfc.lib.types import Instances, SignalLike
+
 
 @block
-def stall_control(valid_last, out_ready, advance, in_ready, out_valid):
+def stall_control(
+    valid_last: SignalLike,
+    out_ready: SignalLike,
+    advance: SignalLike,
+    in_ready: SignalLike,
+    out_valid: SignalLike,
+) -> Instances:
     """`advance` (and `in_ready`) when the last stage is empty or its result is being taken."""
 
     @always_comb
-    def control():
+    def control() -> None:
         advance.next = out_ready or not valid_last
         in_ready.next = out_ready or not valid_last
         out_valid.next = valid_last
@@ -26,11 +34,13 @@ def stall_control(valid_last, out_ready, advance, in_ready, out_valid):
 
 
 @block
-def stage_register(clk, rst, advance, source, target):
+def stage_register(
+    clk: SignalLike, rst: SignalLike, advance: SignalLike, source: SignalLike, target: SignalLike
+) -> Instances:
     """`target` takes `source` on the cycles `advance` is high."""
 
     @always_seq(clk.posedge, reset=rst)
-    def load():
+    def load() -> None:
         if advance:
             target.next = source
 
@@ -38,7 +48,14 @@ def stage_register(clk, rst, advance, source, target):
 
 
 @block
-def delay_line(clk, rst, advance, source, target, stages: int):
+def delay_line(
+    clk: SignalLike,
+    rst: SignalLike,
+    advance: SignalLike,
+    source: SignalLike,
+    target: SignalLike,
+    stages: int,
+) -> Instances:
     """`target` is `source` as it was `stages` advancing cycles ago (`stages` >= 1 registers).
 
     Each register is reset: use it for valid bits and flags. `data_delay` is the cheaper form
@@ -50,7 +67,9 @@ def delay_line(clk, rst, advance, source, target, stages: int):
 
 
 @block
-def data_delay(clk, advance, source, target, stages: int):
+def data_delay(
+    clk: SignalLike, advance: SignalLike, source: SignalLike, target: SignalLike, stages: int
+) -> Instances:
     """`target` is `source` as it was `stages` advancing cycles ago, in one shift register.
 
     Not reset (a valid bit in a `delay_line` beside it says what the values mean), so synthesis
@@ -60,21 +79,31 @@ def data_delay(clk, advance, source, target, stages: int):
     last = stages - 1
 
     @always_seq(clk.posedge, reset=None)
-    def shift():
+    def shift() -> None:
         if advance:
             chain[0].next = source
             for i in range(1, stages):
                 chain[i].next = chain[i - 1]
 
     @always_comb
-    def output():
+    def output() -> None:
         target.next = chain[last]
 
     return shift, output
 
 
 @block
-def result_queue(clk, rst, push, source, has_room, out_valid, out_ready, target, depth: int):
+def result_queue(
+    clk: SignalLike,
+    rst: SignalLike,
+    push: SignalLike,
+    source: SignalLike,
+    has_room: SignalLike,
+    out_valid: SignalLike,
+    out_ready: SignalLike,
+    target: SignalLike,
+    depth: int,
+) -> Instances:
     """A small queue at a pipeline's end, so a slow consumer does not stall it every result.
 
     With one stall enable, a consumer that takes results late stops the whole pipeline, and
@@ -100,7 +129,7 @@ def result_queue(clk, rst, push, source, has_room, out_valid, out_ready, target,
     last = depth - 1
 
     @always_seq(clk.posedge, reset=rst)
-    def update():
+    def update() -> None:
         taken = level != 0 and out_ready
         if push:
             memory[write].next = source
@@ -113,7 +142,7 @@ def result_queue(clk, rst, push, source, has_room, out_valid, out_ready, target,
             level.next = level - 1
 
     @always_comb
-    def outputs():
+    def outputs() -> None:
         target.next = memory[read]
         out_valid.next = level != 0
         has_room.next = level < last

@@ -15,6 +15,7 @@ from myhdl import Signal, always_comb, always_seq, block, intbv
 from rfc.lib.arith.pipeline import stall_control
 from rfc.lib.arith.sincos import SinCosConfig
 from rfc.lib.cordic.stage import micro_rotation, rotation
+from rfc.lib.types import Instances, SignalLike
 
 
 def _signed(bits: int, value: int = 0) -> Signal:
@@ -23,18 +24,18 @@ def _signed(bits: int, value: int = 0) -> Signal:
 
 @block
 def sincos(
-    clk,
-    rst,
-    in_valid,
-    in_ready,
-    angle,
-    out_valid,
-    out_ready,
-    cos,
-    sin,
+    clk: SignalLike,
+    rst: SignalLike,
+    in_valid: SignalLike,
+    in_ready: SignalLike,
+    angle: SignalLike,
+    out_valid: SignalLike,
+    out_ready: SignalLike,
+    cos: SignalLike,
+    sin: SignalLike,
     config: SinCosConfig,
     pipelined: bool = False,
-):
+) -> Instances:
     """Cosine and sine of a fixed-point angle, with valid/ready handshakes.
 
     Args:
@@ -61,7 +62,18 @@ def sincos(
 
 
 @block
-def sincos_iterative(clk, rst, in_valid, in_ready, angle, out_valid, out_ready, cos, sin, config):
+def sincos_iterative(
+    clk: SignalLike,
+    rst: SignalLike,
+    in_valid: SignalLike,
+    in_ready: SignalLike,
+    angle: SignalLike,
+    out_valid: SignalLike,
+    out_ready: SignalLike,
+    cos: SignalLike,
+    sin: SignalLike,
+    config: SinCosConfig,
+) -> Instances:
     """One micro-rotation per cycle through variable shifts; ports as `sincos`."""
     steps = config.steps
     # The step counter rests at `steps` while idle; that address reads 0.
@@ -81,7 +93,7 @@ def sincos_iterative(clk, rst, in_valid, in_ready, angle, out_valid, out_ready, 
     rotate = rotation(False, step, rom, step, (xs, ys, zs), (x_next, y_next, z_next))
 
     @always_seq(clk.posedge, reset=rst)
-    def iterate():
+    def iterate() -> None:
         if step != steps:
             xs.next = x_next
             ys.next = y_next
@@ -100,7 +112,7 @@ def sincos_iterative(clk, rst, in_valid, in_ready, angle, out_valid, out_ready, 
             step.next = 0
 
     @always_comb
-    def outputs():
+    def outputs() -> None:
         in_ready.next = step == steps and not full
         out_valid.next = full
 
@@ -108,7 +120,18 @@ def sincos_iterative(clk, rst, in_valid, in_ready, angle, out_valid, out_ready, 
 
 
 @block
-def sincos_pipelined(clk, rst, in_valid, in_ready, angle, out_valid, out_ready, cos, sin, config):
+def sincos_pipelined(
+    clk: SignalLike,
+    rst: SignalLike,
+    in_valid: SignalLike,
+    in_ready: SignalLike,
+    angle: SignalLike,
+    out_valid: SignalLike,
+    out_ready: SignalLike,
+    cos: SignalLike,
+    sin: SignalLike,
+    config: SinCosConfig,
+) -> Instances:
     """A stage per micro-rotation with fixed shifts; ports as `sincos`."""
     count = config.steps + 1
     # Stage i holds the vector after i micro-rotations; stage 0 is the reduced input.
@@ -129,7 +152,7 @@ def sincos_pipelined(clk, rst, in_valid, in_ready, angle, out_valid, out_ready, 
     round_sin = sincos_rounding(ys[last], flips[last], sin, config)
 
     @always_seq(clk.posedge, reset=rst)
-    def load():
+    def load() -> None:
         if advance:
             x_first.next = start_rom[0]
             y_first.next = 0
@@ -156,14 +179,16 @@ def sincos_pipelined(clk, rst, in_valid, in_ready, angle, out_valid, out_ready, 
 
 
 @block
-def sincos_reduction(angle, z_start, flip_start, config):
+def sincos_reduction(
+    angle: SignalLike, z_start: SignalLike, flip_start: SignalLike, config: SinCosConfig
+) -> Instances:
     """The angle reduced to [-π/2, π/2] with the guard bits, and whether to negate (comb)."""
     wide = config.z_width + 2
     pi_rom, two_pi_rom, half_rom = (config.pi,), (config.two_pi,), (config.half_pi,)
     guard = config.guard
 
     @always_comb
-    def reduce():
+    def reduce() -> None:
         pi = intbv(0, min=-(1 << (wide - 1)), max=1 << (wide - 1))
         two_pi = intbv(0, min=-(1 << (wide - 1)), max=1 << (wide - 1))
         half = intbv(0, min=-(1 << (wide - 1)), max=1 << (wide - 1))
@@ -190,14 +215,16 @@ def sincos_reduction(angle, z_start, flip_start, config):
 
 
 @block
-def sincos_rounding(value, flip, result, config):
+def sincos_rounding(
+    value: SignalLike, flip: SignalLike, result: SignalLike, config: SinCosConfig
+) -> Instances:
     """A register's value, negated when `flip`, rounded half up from the guard bits (comb)."""
     wide = config.xy_width + 1
     guard = config.guard
     half = 1 << (guard - 1)
 
     @always_comb
-    def round_half_up():
+    def round_half_up() -> None:
         v = intbv(0, min=-(1 << (wide - 1)), max=1 << (wide - 1))
         if flip:
             v[:] = -value

@@ -152,7 +152,7 @@ SUGGESTIONS: dict[tuple[str, str], str] = {
 
 
 def block_key(
-    function: Callable[..., Any], args: tuple, kwargs: Mapping[str, Any]
+    function: Callable[..., Any], args: tuple[Any, ...], kwargs: Mapping[str, Any]
 ) -> BlockKey | None:
     """The key of a call of a known block function, or None for any other function."""
     describe = _KNOWN.get(function)

@@ -13,6 +13,7 @@ from myhdl import block
 from rfc.lib.arith.engine import Program, ProgramBuilder
 from rfc.lib.arith.engine_hdl import engine
 from rfc.lib.fixed import FixedFormat
+from rfc.lib.types import Instances, SignalLike
 
 #: Entries of a transform as it travels: the top three rows.
 ENTRIES = 12
@@ -42,7 +43,18 @@ def transform_program(fmt: FixedFormat) -> Program:
 
 
 @block
-def transform_multiply(clk, rst, in_valid, in_ready, a, b, out_valid, out_ready, c, fmt):
+def transform_multiply(
+    clk: SignalLike,
+    rst: SignalLike,
+    in_valid: SignalLike,
+    in_ready: SignalLike,
+    a: SignalLike,
+    b: SignalLike,
+    out_valid: SignalLike,
+    out_ready: SignalLike,
+    c: SignalLike,
+    fmt: FixedFormat,
+) -> Instances:
     """``C = A·B`` of homogeneous transforms in `fmt`, sequential on one multiply-accumulate.
 
     Args:

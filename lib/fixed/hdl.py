@@ -17,12 +17,15 @@ from rfc.lib.fixed.ieee754 import (
     ROUNDING_BITS,
     SIGNIFICAND_SHIFT,
 )
+from rfc.lib.types import Instances, SignalLike
 
 SIGNIFICAND_BITS = MANTISSA_BITS + 1
 
 
 @block
-def float_to_fixed(bits, raw, overflow, invalid, fmt: FixedFormat):
+def float_to_fixed(
+    bits: SignalLike, raw: SignalLike, overflow: SignalLike, invalid: SignalLike, fmt: FixedFormat
+) -> Instances:
     """Float64 → fixed point, rounding to nearest with ties to even (combinational).
 
     Args:
@@ -43,7 +46,7 @@ def float_to_fixed(bits, raw, overflow, invalid, fmt: FixedFormat):
     amount_max = amount_base
 
     @always_comb
-    def convert():
+    def convert() -> None:
         exponent = intbv(0)[11:]
         exponent[:] = bits[63:MANTISSA_BITS]
         significand = intbv(0)[SIGNIFICAND_BITS:]
@@ -92,7 +95,7 @@ def float_to_fixed(bits, raw, overflow, invalid, fmt: FixedFormat):
 
 
 @block
-def fixed_to_float(raw, bits, fmt: FixedFormat):
+def fixed_to_float(raw: SignalLike, bits: SignalLike, fmt: FixedFormat) -> Instances:
     """Fixed point → float64, rounding to nearest with ties to even (combinational).
 
     Normalizes with a leading-zero count; zero gives +0.0. Every raw value of a valid format
@@ -111,7 +114,7 @@ def fixed_to_float(raw, bits, fmt: FixedFormat):
     excess = padded_bits - SIGNIFICAND_BITS
 
     @always_comb
-    def convert():
+    def convert() -> None:
         negative = bool(raw < 0)
         magnitude = intbv(0)[width:]
         if negative:

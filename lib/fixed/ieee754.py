@@ -27,12 +27,14 @@ QUIET_NAN = 0x7FF8_0000_0000_0000
 
 def float_to_bits(value: float) -> int:
     """The IEEE-754 float64 bit pattern of a Python float."""
-    return struct.unpack("<Q", struct.pack("<d", value))[0]
+    bits: int = struct.unpack("<Q", struct.pack("<d", value))[0]
+    return bits
 
 
 def bits_to_float(bits: int) -> float:
     """The Python float of an IEEE-754 float64 bit pattern."""
-    return struct.unpack("<d", struct.pack("<Q", bits))[0]
+    value: float = struct.unpack("<d", struct.pack("<Q", bits))[0]
+    return value
 
 
 @dataclass(frozen=True)

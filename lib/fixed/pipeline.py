@@ -23,6 +23,7 @@ from rfc.lib.fixed.ieee754 import (
     ROUNDING_BITS,
     SIGNIFICAND_SHIFT,
 )
+from rfc.lib.types import Instances, SignalLike
 
 SIGNIFICAND_BITS = MANTISSA_BITS + 1
 #: Registers of `float_to_fixed_pipeline`: decode, coarse shift, fine shift, round, sign.
@@ -42,7 +43,15 @@ def _ranged(top: int) -> Signal:
 
 
 @block
-def float_to_fixed_pipeline(clk, advance, bits, raw, overflow, invalid, fmt: FixedFormat):
+def float_to_fixed_pipeline(
+    clk: SignalLike,
+    advance: SignalLike,
+    bits: SignalLike,
+    raw: SignalLike,
+    overflow: SignalLike,
+    invalid: SignalLike,
+    fmt: FixedFormat,
+) -> Instances:
     """Float64 → `fmt`, ties to even, saturating: `ieee754.float_to_fixed` in five stages.
 
     Args:
@@ -77,7 +86,7 @@ def float_to_fixed_pipeline(clk, advance, bits, raw, overflow, invalid, fmt: Fix
     magnitude4 = _unsigned(width + 1)
 
     @always_seq(clk.posedge, reset=None)
-    def decode():
+    def decode() -> None:
         if advance:
             exponent = intbv(0)[11:]
             exponent[:] = bits[63:MANTISSA_BITS]
@@ -105,7 +114,7 @@ def float_to_fixed_pipeline(clk, advance, bits, raw, overflow, invalid, fmt: Fix
             saturate1.next = exponent == EXPONENT_ALL_ONES or amount < 0
 
     @always_seq(clk.posedge, reset=None)
-    def coarse_shift():
+    def coarse_shift() -> None:
         if advance:
             field = intbv(0)[field_bits:]
             field[:] = significand1
@@ -117,7 +126,7 @@ def float_to_fixed_pipeline(clk, advance, bits, raw, overflow, invalid, fmt: Fix
             saturate2.next = saturate1
 
     @always_seq(clk.posedge, reset=None)
-    def fine_shift():
+    def fine_shift() -> None:
         if advance:
             field = intbv(0)[field_bits:]
             field[:] = field2 >> fine2
@@ -129,7 +138,7 @@ def float_to_fixed_pipeline(clk, advance, bits, raw, overflow, invalid, fmt: Fix
             saturate3.next = saturate2
 
     @always_seq(clk.posedge, reset=None)
-    def round_even():
+    def round_even() -> None:
         if advance:
             if round3 and (sticky3 or quotient3[0]):
                 magnitude4.next = quotient3 + 1
@@ -140,7 +149,7 @@ def float_to_fixed_pipeline(clk, advance, bits, raw, overflow, invalid, fmt: Fix
             saturate4.next = saturate3
 
     @always_seq(clk.posedge, reset=None)
-    def apply_sign():
+    def apply_sign() -> None:
         if advance:
             # Largest magnitude allowed: 2**(width-1) when negative, 2**(width-1) - 1 otherwise.
             too_large = bool(magnitude4[width] or magnitude4[width - 1])
@@ -170,7 +179,9 @@ def float_to_fixed_pipeline(clk, advance, bits, raw, overflow, invalid, fmt: Fix
 
 
 @block
-def fixed_to_float_pipeline(clk, advance, raw, bits, fmt: FixedFormat):
+def fixed_to_float_pipeline(
+    clk: SignalLike, advance: SignalLike, raw: SignalLike, bits: SignalLike, fmt: FixedFormat
+) -> Instances:
     """`fmt` → float64, ties to even: `ieee754.fixed_to_float` in four stages.
 
     Args:
@@ -193,7 +204,7 @@ def fixed_to_float_pipeline(clk, advance, raw, bits, fmt: FixedFormat):
     exponent3, zero3 = _unsigned(12), Signal(bool(0))
 
     @always_seq(clk.posedge, reset=None)
-    def magnitude():
+    def magnitude() -> None:
         if advance:
             negative1.next = raw < 0
             if raw < 0:
@@ -202,7 +213,7 @@ def fixed_to_float_pipeline(clk, advance, raw, bits, fmt: FixedFormat):
                 magnitude1.next = raw
 
     @always_seq(clk.posedge, reset=None)
-    def leading_zeros():
+    def leading_zeros() -> None:
         if advance:
             count = intbv(0, min=0, max=width + 1)
             count[:] = width
@@ -214,7 +225,7 @@ def fixed_to_float_pipeline(clk, advance, raw, bits, fmt: FixedFormat):
             negative2.next = negative1
 
     @always_seq(clk.posedge, reset=None)
-    def normalize():
+    def normalize() -> None:
         if advance:
             normalized = intbv(0)[padded_bits:]
             normalized[:] = magnitude2
@@ -225,7 +236,7 @@ def fixed_to_float_pipeline(clk, advance, raw, bits, fmt: FixedFormat):
             negative3.next = negative2
 
     @always_seq(clk.posedge, reset=None)
-    def round_and_pack():
+    def round_and_pack() -> None:
         if advance:
             significand = intbv(0)[SIGNIFICAND_BITS + 1 :]
             significand[:] = normalized3[padded_bits:excess]

@@ -12,6 +12,7 @@ class _BlockFunction(Protocol[_P]):
     # it (`vhdl_code`, `verilog_code`) replaces the conversion of its body.
     vhdl_code: str
     verilog_code: str
+    func: Callable[_P, Any]  # the function as written, before MyHDL wrapped it
     def __call__(self, *args: _P.args, **kwargs: _P.kwargs) -> Any: ...
 
 def block(func: Callable[_P, Any]) -> _BlockFunction[_P]: ...

@@ -16,7 +16,7 @@ import threading
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Protocol
+from typing import Protocol, TypedDict
 
 from rfc.errors import RfcError
 from rfc.ir.model import Design
@@ -46,6 +46,28 @@ class SimulationTop(Protocol):
 TopProvider = Callable[[Design, Path], SimulationTop]
 
 
+class CosimJob(TypedDict):
+    """What the harness in the simulator (`rfc.runtime.cosim`) reads: the replay and its files."""
+
+    spec: str
+    bag: str
+    topics: list[str]
+    topic_names: dict[str, str]
+    clock_mhz: float
+    policy: str
+    depth: int
+    screen: bool
+    drain_cycles: int
+    stall_cycles: int
+    seed: int
+    results: str
+    account: str
+    progress: str
+    stalled: str
+    busy: list[str]
+    warnings: str
+
+
 def load_top_provider(reference: str = DEFAULT_TOP_PROVIDER) -> TopProvider:
     """Import a top provider named ``module:function``.
 
@@ -55,7 +77,7 @@ def load_top_provider(reference: str = DEFAULT_TOP_PROVIDER) -> TopProvider:
     """
     module_name, _, function_name = reference.partition(":")
     try:
-        provider = getattr(importlib.import_module(module_name), function_name)
+        provider: TopProvider = getattr(importlib.import_module(module_name), function_name)
     except (ImportError, AttributeError):
         if reference == DEFAULT_TOP_PROVIDER:
             raise RfcError(
@@ -116,7 +138,7 @@ def simulate_with_ghdl(
         CosimError: The simulation failed (a bug in rfc or in the logic).
         StallError: The logic stalled.
     """
-    job = {
+    job: CosimJob = {
         "spec": str(design.project.spec_file),
         "bag": str(bag),
         "topics": sorted(topic_names),

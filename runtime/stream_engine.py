@@ -347,6 +347,7 @@ def simulate_with_engine(
     messages: Iterable[BagMessage],
     top: VerilogTop,
     *,
+    clock_mhz: float,
     drain_cycles: int,
     stall_cycles: int,
     seed: int,
@@ -359,6 +360,7 @@ def simulate_with_engine(
         runtime: The processor side (its account is completed, the logic's drops included).
         messages: Input messages in time order, on the spec's topics.
         top: The logic's top level with its ``verilog`` files in compile order.
+        clock_mhz: The logic's clock (message arrivals convert to its cycles).
         drain_cycles: Cycles of silence after which the system is idle.
         stall_cycles: The stall watchdog's base window (`rfc.runtime.stall`).
         seed: Seed of the idle/backpressure pattern.
@@ -377,7 +379,6 @@ def simulate_with_engine(
     lanes = top.bus_width // 8
     engine = StreamEngine(binary, seed)
     try:
-        clock_mhz = runtime.plan.design.project.clock_mhz
         names = _busy_names(top)
         busy = BusyWatch(names, stall_cycles) if names else None
         loop = EngineReplay(engine, runtime, clock_mhz, lanes, drain_cycles, stall_cycles, busy)

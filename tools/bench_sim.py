@@ -164,6 +164,7 @@ def record(spec: Path, bag: Path, top: object) -> Stimulus:
         runtime,
         read_bag(bag, types, runtime.topics),
         top,  # type: ignore[arg-type]
+        clock_mhz=design.project.clock_mhz,
         drain_cycles=DRAIN,
         stall_cycles=DEFAULT_STALL_CYCLES,
         seed=SEED,

@@ -30,6 +30,7 @@ from rfc.runtime.core import DEFAULT_DEPTH, QueuePolicy
 from rfc.runtime.stall import DEFAULT_STALL_CYCLES
 
 if TYPE_CHECKING:
+    from rfc.ir.model import Design
     from rfc.lower.runtime_plan import DesignPlan
     from rfc.messages.rosbags_adapter import BagMessage, MessageTypes
     from rfc.runtime.account import Account
@@ -201,6 +202,7 @@ def sim(
         types,
         topic_names,
         runtime,
+        design,
         backend,
         drain_cycles,
         stall_cycles,
@@ -243,6 +245,7 @@ class _Run:
     types: MessageTypes
     topic_names: dict[str, str]
     runtime: Runtime
+    design: Design
     backend: Backend
     drain_cycles: int
     stall_cycles: int
@@ -269,7 +272,7 @@ class _Run:
         from rfc.runtime.replay import replay
         from rfc.toolchain import CosimError
 
-        runtime, design = self.runtime, self.runtime.plan.design
+        runtime, design = self.runtime, self.design
         if not runtime.plan.has_logic:
             with closing(self.messages()) as messages:
                 return replay(runtime, messages, None, progress), runtime.account
@@ -299,7 +302,7 @@ class _Run:
         if simulator == "verilator":
             return self._engine(top, progress), self.runtime.account
         run = simulate_with_ghdl(
-            self.runtime.plan.design,
+            self.design,
             self.bag.resolve(),
             self.topic_names,
             top,
@@ -327,6 +330,7 @@ class _Run:
                     self.runtime,
                     messages,
                     top,  # type: ignore[arg-type]  # _simulator checked it has Verilog
+                    clock_mhz=self.design.project.clock_mhz,
                     drain_cycles=self.drain_cycles,
                     stall_cycles=self.stall_cycles,
                     seed=self.seed,
@@ -372,7 +376,7 @@ class _Run:
                 top.bus_width,
                 self.runtime,
                 messages,
-                clock_mhz=self.runtime.plan.design.project.clock_mhz,
+                clock_mhz=self.design.project.clock_mhz,
                 drain_cycles=self.drain_cycles,
                 stall_cycles=self.stall_cycles,
                 seed=self.seed,

@@ -128,6 +128,7 @@ def record_first(design: Design, converter: Converter) -> bool:
     """
     infrastructure = design.infrastructure
     assert infrastructure is not None
+    producer: str | None
     if converter.crossing is not None:
         producer = converter.crossing.hardware.split(".")[0]
     else:

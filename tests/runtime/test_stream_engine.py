@@ -60,7 +60,13 @@ def test_the_engine_replays_a_random_bag_as_the_cocotb_harness_does(tmp_path, sp
     )
     runtime = Runtime(DesignPlan(design), QueueConfig())
     types = message_types("ros2")
-    published = simulate_with_engine(runtime, read_bag(bag, types, topics), top, **options)
+    published = simulate_with_engine(
+        runtime,
+        read_bag(bag, types, topics),
+        top,
+        clock_mhz=design.project.clock_mhz,
+        **options,
+    )
     assert [(p.topic, p.data) for p in published] == [(p.topic, p.data) for p in harness.published]
     assert runtime.account.to_json() == harness.account.to_json()
     assert runtime.account.dropped == {}

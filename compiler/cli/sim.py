@@ -35,7 +35,7 @@ if TYPE_CHECKING:
     from rfc.messages.rosbags_adapter import BagMessage, MessageTypes
     from rfc.runtime.account import Account
     from rfc.runtime.core import Published, Runtime
-    from rfc.runtime.hardware import SimulationTop
+    from rfc.sim.hardware import SimulationTop
 
 
 class Backend(StrEnum):
@@ -168,9 +168,9 @@ def sim(
     from rfc.messages.rosbags_adapter import check_bag_path, message_types, write_bag
     from rfc.passes.pipeline import PIPELINE
     from rfc.runtime.core import QueueConfig, Runtime
-    from rfc.runtime.hls_csim import HlsOnProcessor, attach_c_simulations
+    from rfc.sim.hls_csim import HlsOnProcessor, attach_c_simulations
 
-    # HLS accelerators run on the processor, C-simulated (rfc.runtime.hls_csim)
+    # HLS accelerators run on the processor, C-simulated (rfc.sim.hls_csim)
     design = compile_spec(str(spec), pipeline=(HlsOnProcessor(), *PIPELINE))
     project = design.project
     check_bag_path(out, project.middleware)
@@ -253,7 +253,7 @@ class _Run:
     top_provider: str | None
     simulator: Simulator | None = None
     warnings: list[str] = field(default_factory=list)
-    """What the replay gave up waiting for (`rfc.runtime.busy`), filled by `execute`."""
+    """What the replay gave up waiting for (`rfc.sim.busy`), filled by `execute`."""
 
     def total(self) -> int:
         from rfc.messages.rosbags_adapter import bag_topics
@@ -268,8 +268,8 @@ class _Run:
             yield replace(message, topic=self.topic_names[message.topic])
 
     def execute(self, progress: Callable[[int], None]) -> tuple[list[Published], Account]:
-        from rfc.runtime.hardware import DEFAULT_TOP_PROVIDER, load_top_provider
         from rfc.runtime.replay import replay
+        from rfc.sim.hardware import DEFAULT_TOP_PROVIDER, load_top_provider
         from rfc.toolchain import CosimError
 
         runtime, design = self.runtime, self.design
@@ -296,7 +296,7 @@ class _Run:
     def _ghdl(
         self, top: SimulationTop, scratch: Path, progress: Callable[[int], None]
     ) -> tuple[list[Published], Account]:
-        from rfc.runtime.hardware import simulate_with_ghdl
+        from rfc.sim.hardware import simulate_with_ghdl
 
         simulator = self._simulator(top)
         if simulator == "verilator":
@@ -319,8 +319,8 @@ class _Run:
         return run.published, run.account
 
     def _engine(self, top: SimulationTop, progress: Callable[[int], None]) -> list[Published]:
-        """Verilator with the DMA streams driven in C++ (`rfc.runtime.stream_engine`)."""
-        from rfc.runtime.stream_engine import EngineError, simulate_with_engine
+        """Verilator with the DMA streams driven in C++ (`rfc.sim.stream_engine`)."""
+        from rfc.sim.stream_engine import EngineError, simulate_with_engine
         from rfc.toolchain import CosimError
         from rfc.toolchain.verilator import VerilatorError
 
@@ -356,7 +356,7 @@ class _Run:
         return self.simulator.value
 
     def _myhdl(self, top: SimulationTop, progress: Callable[[int], None]) -> list[Published]:
-        from rfc.runtime.myhdl_sim import simulate_with_myhdl
+        from rfc.sim.myhdl_sim import simulate_with_myhdl
 
         factory = getattr(top, "myhdl", None)
         if factory is None:

@@ -23,9 +23,9 @@ from rfc.lower.hardware import simulation_top
 from rfc.lower.runtime_plan import DesignPlan
 from rfc.messages.rosbags_adapter import message_types, read_bag, write_bag
 from rfc.runtime.core import QueueConfig, Runtime
-from rfc.runtime.hardware import simulate_with_ghdl
 from rfc.runtime.stall import DEFAULT_STALL_CYCLES
-from rfc.runtime.stream_engine import simulate_with_engine
+from rfc.sim.hardware import simulate_with_ghdl
+from rfc.sim.stream_engine import simulate_with_engine
 from tests.examples.multi_type.test_system import SPEC, TOPICS, image, scan, twist
 
 

@@ -1,6 +1,6 @@
 """The runtime loop inside a cocotb simulation of the whole programmable logic (GHDL).
 
-This module runs in the simulator's Python, started by `rfc.runtime.hardware`. It reads the
+This module runs in the simulator's Python, started by `rfc.sim.hardware`. It reads the
 job (a JSON file named by ``RFC_SIM_JOB``), compiles the spec, and replays the bag: messages
 arrive at their recorded times on the simulated clock, wait in the processor's callback queues,
 and go to the logic one DMA transfer at a time through a cocotbext-axi source on the PS→PL
@@ -10,7 +10,7 @@ stamp of the newest input offered so far.
 
 Idle time is skipped (`rfc.runtime.arrivals`): when nothing waits, nothing moves and the logic
 has been quiet for the job's drain window (and is not still expected to answer a transfer,
-`rfc.runtime.stall.AnswerWait`, nor busy by its ``busy`` bits, `rfc.runtime.busy`), the next
+`rfc.runtime.stall.AnswerWait`, nor busy by its ``busy`` bits, `rfc.sim.busy`), the next
 message arrives at once. After the last
 message the run ends once the system is idle the same way. A logic that stops completing
 transfers while work is pending ends the run with the stall watchdog's report
@@ -38,14 +38,14 @@ from rfc.lib.converters.malformed import DROP_REASONS, status_port
 from rfc.lower.runtime_plan import DesignPlan
 from rfc.messages.rosbags_adapter import message_types, read_bag
 from rfc.runtime.arrivals import IDLE_FRACTION, ArrivalClock
-from rfc.runtime.busy import BusyWatch
 from rfc.runtime.core import Published, QueueConfig, QueuePolicy, Runtime
-from rfc.runtime.hardware import CosimJob
 from rfc.runtime.protocol import Chunk
 from rfc.runtime.records import write_records
 from rfc.runtime.stall import AnswerWait, StallError, StallWatch, largest_output, pending_work
 from rfc.runtime.status import decode_status, is_status, status_request
 from rfc.runtime.stream_top import BusyTop, StreamTop
+from rfc.sim.busy import BusyWatch
+from rfc.sim.hardware import CosimJob
 
 
 class _Replay:

@@ -4,7 +4,7 @@ The logic comes from a *top provider* — by default `rfc.lower.hardware.simulat
 whole-system generation — a function ``(design, directory) -> top`` whose result has ``top``
 (the entity), ``sources`` (VHDL in compile order) and ``bus_width``; the entity has the ports
 of the system contract (docs/runtime.md). The replay itself runs in the simulator
-(`rfc.runtime.cosim`); this module prepares its job, runs cocotb in a worker thread while
+(`rfc.sim.cosim`); this module prepares its job, runs cocotb in a worker thread while
 reporting progress, and reads the results back.
 """
 
@@ -35,7 +35,7 @@ DEFAULT_DRAIN_CYCLES = 1000
 class SimulationTop(Protocol):
     """The logic to simulate: its entity, its VHDL sources in compile order, its bus width.
 
-    A top may also name the blocks its ``busy`` port watches (``busy``, `rfc.runtime.busy`).
+    A top may also name the blocks its ``busy`` port watches (``busy``, `rfc.sim.busy`).
     """
 
     top: str
@@ -47,7 +47,7 @@ TopProvider = Callable[[Design, Path], SimulationTop]
 
 
 class CosimJob(TypedDict):
-    """What the harness in the simulator (`rfc.runtime.cosim`) reads: the replay and its files."""
+    """What the harness in the simulator (`rfc.sim.cosim`) reads: the replay and its files."""
 
     spec: str
     bag: str
@@ -166,7 +166,7 @@ def simulate_with_ghdl(
             run_cocotb(
                 getattr(top, "verilog", ()) if simulator == "verilator" else top.sources,
                 top.top,
-                "rfc.runtime.cosim",
+                "rfc.sim.cosim",
                 workdir / "sim",
                 env={"RFC_SIM_JOB": str(job_file)},
                 seed=seed,

@@ -39,6 +39,8 @@ def message_class(canonical: str) -> Any:
         ) from None
 
 
+# The same parameters as `rfc.runtime.ros1.spin`: the node calls one or the other by its
+# middleware; the two share the signature, not the body.
 def spin(
     plan: RuntimePlan,
     open_dma: Callable[[], DmaChannels],

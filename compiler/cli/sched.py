@@ -9,9 +9,9 @@ from typing import Annotated, Any
 
 import typer
 from rich.console import Console
-from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
+from rfc.cli.progress import counting_bar
 from rfc.errors import RfcError
 from rfc.files.directory import replace_directory
 from rfc.lib.schedulers.generate import (
@@ -119,16 +119,7 @@ def _sweep(
     """One synthesis job per N, here or on a Dask cluster; the reports in N's order."""
     from rfc.cluster import run_jobs
 
-    console = Console(stderr=True, highlight=False)
-    with Progress(
-        TextColumn("synthesizing"),
-        BarColumn(),
-        MofNCompleteColumn(),
-        TimeElapsedColumn(),
-        console=console,
-        transient=True,
-        disable=not console.is_terminal,
-    ) as bar:
+    with counting_bar("synthesizing") as bar:
         task = bar.add_task("synthesizing", total=len(specs))
         reports, failures = run_jobs(
             partial(_report_job, use_cache=use_cache),

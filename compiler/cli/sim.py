@@ -21,10 +21,10 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 from rich.console import Console
-from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
 from rfc.cli.notes import note_skipped_topics
+from rfc.cli.progress import counting_bar
 from rfc.errors import RfcError, did_you_mean
 from rfc.runtime.core import DEFAULT_DEPTH, QueuePolicy
 from rfc.runtime.stall import DEFAULT_STALL_CYCLES
@@ -210,16 +210,7 @@ def sim(
         top_provider,
         simulator,
     )
-    console = Console(stderr=True, highlight=False)
-    with Progress(
-        TextColumn("replaying"),
-        BarColumn(),
-        MofNCompleteColumn(),
-        TimeElapsedColumn(),
-        console=console,
-        transient=True,
-        disable=as_json or not console.is_terminal,
-    ) as progress:
+    with counting_bar("replaying", hidden=as_json) as progress:
         task = progress.add_task("replay", total=run.total())
         published, account = run.execute(lambda done: progress.update(task, completed=done))
     write_bag(

@@ -22,9 +22,9 @@ from typing import Any
 
 import typer
 from rich.console import Console
-from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
+from rfc.cli.progress import counting_bar
 from rfc.errors import RfcError
 
 #: Suffixes of the bag files a batch directory is searched for.
@@ -115,16 +115,7 @@ def run_batch(
     out.mkdir(parents=True, exist_ok=True)
     options = _options(ctx)
     batch = [_job(spec, bag, out, options) for bag in bags]
-    console = Console(stderr=True, highlight=False)
-    with Progress(
-        TextColumn("replaying bags"),
-        BarColumn(),
-        MofNCompleteColumn(),
-        TimeElapsedColumn(),
-        console=console,
-        transient=True,
-        disable=as_json or not console.is_terminal,
-    ) as progress:
+    with counting_bar("replaying bags", hidden=as_json) as progress:
         task = progress.add_task("bags", total=len(batch))
         results, failures = run_jobs(
             replay,

@@ -279,6 +279,8 @@ def _struct_ports(
     for name, struct in structs.items():
         argument = remaining.pop(0)
         want = struct.arguments()[0]
+        # The struct form's own check (C type and pointer), not the scalar form's (bits and
+        # direction): the two refusals name what each form gets wrong.
         if argument.ctype != struct.type_name or argument.output != struct.output:
             kind = "pointer to " if argument.output else ""
             raise RfcError(

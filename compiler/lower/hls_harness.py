@@ -180,6 +180,8 @@ def _read_port(struct: MessageStruct) -> list[str]:
     return lines
 
 
+# The mirror of `_read_port`, not a copy: an output's streams go back with their length first,
+# read from the stream the function filled, where an input's length came from its struct.
 def _write_port(struct: MessageStruct) -> list[str]:
     lines = [f"        put({struct.port}{f.access});" for f in struct.fields]
     for stream in struct.streams:

@@ -1,6 +1,6 @@
 """Replaying recorded messages through a system whose logic is a Python model, or absent.
 
-The cocotb driver (`rfc.runtime.cosim`) replays against simulated hardware; this module
+The cocotb driver (`rfc.sim.cosim`) replays against simulated hardware; this module
 replays when every accelerator runs in software, and against a `LogicModel` (a Python stand-in
 for the programmable logic, such as `rfc.runtime.loopback.PassThroughLogic`) in tests and
 measurements. Messages are offered in bag order; after each, the queues are drained through

@@ -29,6 +29,8 @@ def ros1_name(canonical: str) -> str:
     return f"{package}/{name}" if name else canonical
 
 
+# The same parameters as `rfc.runtime.ros2.spin`: the node calls one or the other by its
+# middleware; the two share the signature, not the body.
 def spin(
     plan: RuntimePlan,
     open_dma: Callable[[], DmaChannels],

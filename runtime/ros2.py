@@ -39,6 +39,8 @@ def message_class(canonical: str) -> Any:
         ) from None
 
 
+# The same parameters as `rfc.runtime.ros1.spin`: the node calls one or the other by its
+# middleware; the two share the signature, not the body.
 def spin(
     plan: RuntimePlan,
     open_dma: Callable[[], DmaChannels],
@@ -54,12 +56,14 @@ def spin(
     """
     try:
         import rclpy
+        from rclpy.utilities import try_shutdown
     except ImportError as exc:
         raise RfcError(
             f"cannot import ROS 2's Python client ({exc.name})",
             hint="source a ROS 2 installation (setup.bash), or pip install 'rfc[ros2]'",
         ) from None
-    classes = {i.message: message_class(i.message) for i in (*plan.inputs, *plan.outputs)}
+    names = {i.message for i in plan.inputs} | {o.message for o in plan.outputs}
+    classes = {name: message_class(name) for name in names}
     dma = open_dma()
     rclpy.init(args=list(ros_arguments))
     node = rclpy.create_node(plan.node_name)
@@ -84,7 +88,7 @@ def spin(
         node.create_subscription(
             classes[topic_input.message],
             topic_input.topic,
-            lambda data, topic=topic_input.topic: core.on_message(topic, data),
+            _deliver(core, topic_input.topic),
             queues.depth,
             raw=True,
         )
@@ -98,4 +102,9 @@ def spin(
         account = core.stop()
         node.get_logger().info(f"rfc account: {account.to_json()}")
         node.destroy_node()
-        rclpy.try_shutdown()
+        try_shutdown()
+
+
+def _deliver(core: NodeCore, topic: str) -> Callable[[bytes], None]:
+    """The subscription callback of `topic`: its raw messages into the node's queues."""
+    return lambda data: core.on_message(topic, data)

@@ -21,6 +21,7 @@ from cocotb.triggers import ClockCycles
 from cocotbext.axi import AxiStreamBus, AxiStreamFrame, AxiStreamSink, AxiStreamSource
 
 from rfc.runtime.sim_device import TAKEN
+from rfc.runtime.stream_top import StreamTop
 
 #: Cycles simulated between two looks at the socket.
 STEP_CYCLES = 16
@@ -31,13 +32,13 @@ WAIT_SECONDS = 0.02
 
 
 @cocotb.test()
-async def bridge(dut: object) -> None:
+async def bridge(dut: StreamTop) -> None:
     """Move transfers between the node's socket and the logic until the node leaves."""
     logging.getLogger("cocotb").setLevel(logging.WARNING)
     connection = socket.socket(socket.AF_UNIX, socket.SOCK_SEQPACKET)
     connection.connect(os.environ["RFC_SIM_SOCKET"])
     period_ns = 1000.0 / float(os.environ["RFC_SIM_CLOCK_MHZ"])
-    cocotb.start_soon(Clock(dut.aclk, period_ns, unit="ns").start())
+    Clock(dut.aclk, period_ns, unit="ns").start()
     source = AxiStreamSource(
         AxiStreamBus.from_prefix(dut, "s_axis_mm2s"),
         dut.aclk,

@@ -19,7 +19,7 @@ import numpy as np
 
 from rfc.driver import compile_spec
 from rfc.passes.pipeline import PIPELINE
-from rfc.runtime.hls_csim import HlsOnProcessor, attach_c_simulations
+from rfc.sim.hls_csim import HlsOnProcessor, attach_c_simulations
 
 ROOT = Path(__file__).resolve().parents[1]
 SPEC = ROOT / "examples" / "image_pipeline" / "ImagePipeline_hls.yaml"

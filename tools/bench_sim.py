@@ -7,8 +7,8 @@ LARGE messages) go
 (a) through ``rfc sim --simulator S`` as a user runs it (a warm-up run fills Verilator's cache
     first), and
 (b) through a plain testbench of the same logic on the same simulator, without Python:
-    Verilator runs the C++ testbench (``runtime/testbench/axis_engine.cpp --batch``) on a file
-    of transfers; GHDL runs ``runtime/testbench/axis_plain_tb.vhd``, which reads them with
+    Verilator runs the C++ testbench (``compiler/sim/testbench/axis_engine.cpp --batch``) on a file
+    of transfers; GHDL runs ``compiler/sim/testbench/axis_plain_tb.vhd``, which reads them with
     textio (analysis and elaboration are not timed).
 
 With ``myhdl`` as the simulator, (a) runs ``rfc sim --backend myhdl`` (the whole logic in MyHDL's
@@ -56,10 +56,10 @@ from rfc.messages.rosbags_adapter import (  # noqa: E402
     write_bag,
 )
 from rfc.runtime.core import Published, QueueConfig, Queued, Runtime  # noqa: E402
-from rfc.runtime.hardware import SimulationTop, simulate_with_ghdl  # noqa: E402
 from rfc.runtime.protocol import HEADER_SIZE, Chunk  # noqa: E402
 from rfc.runtime.stall import DEFAULT_STALL_CYCLES  # noqa: E402
-from rfc.runtime.stream_engine import (  # noqa: E402
+from rfc.sim.hardware import SimulationTop, simulate_with_ghdl  # noqa: E402
+from rfc.sim.stream_engine import (  # noqa: E402
     RESET_CYCLES,
     build_engine,
     pause_pattern,
@@ -72,7 +72,7 @@ ODOMETRY = "nav_msgs/msg/Odometry"
 SHARED = Path(os.environ.get("RFC_SHARED_DATA", ROOT.parent / "shared" / "data"))
 DRAIN = 300
 SEED = 1
-PLAIN_TB = ROOT / "runtime" / "testbench" / "axis_plain_tb.vhd"
+PLAIN_TB = ROOT / "compiler" / "sim" / "testbench" / "axis_plain_tb.vhd"
 ODOMETRY_SPEC = """\
 project: {name: OdomPass, middleware: ROS2, busWidth: 64, scheduler: LRU}
 accelerators:
@@ -164,6 +164,7 @@ def record(spec: Path, bag: Path, top: object) -> Stimulus:
         runtime,
         read_bag(bag, types, runtime.topics),
         top,  # type: ignore[arg-type]
+        clock_mhz=design.project.clock_mhz,
         drain_cycles=DRAIN,
         stall_cycles=DEFAULT_STALL_CYCLES,
         seed=SEED,

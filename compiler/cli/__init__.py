@@ -103,11 +103,11 @@ class LazyGroup(TyperGroup):
 
     _listing = False
 
-    def list_commands(self, ctx: typer.Context) -> list[str]:
+    def list_commands(self, ctx: _click.Context) -> list[str]:
         """Every command's name, without importing any."""
         return list(COMMANDS)
 
-    def get_command(self, ctx: typer.Context, cmd_name: str) -> _click.Command | None:
+    def get_command(self, ctx: _click.Context, cmd_name: str) -> _click.Command | None:
         """The command itself, or only its summary while the root help is written."""
         if cmd_name not in COMMANDS:
             return None
@@ -118,7 +118,7 @@ class LazyGroup(TyperGroup):
         return self.commands[cmd_name]
 
     def resolve_command(
-        self, ctx: typer.Context, args: list[str]
+        self, ctx: _click.Context, args: list[str]
     ) -> tuple[str | None, _click.Command | None, list[str]]:
         """Find the command, suggesting near misses among all commands, loaded or not."""
         try:
@@ -130,7 +130,7 @@ class LazyGroup(TyperGroup):
                 error.message = f"{error.message.rstrip('.')}. Did you mean {suggestions}?"
             raise
 
-    def format_help(self, ctx: typer.Context, formatter: _click.HelpFormatter) -> None:
+    def format_help(self, ctx: _click.Context, formatter: _click.HelpFormatter) -> None:
         """Write the root help from the summaries."""
         self._listing = True
         try:

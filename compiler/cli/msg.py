@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import sys
 from enum import StrEnum
+from functools import partial
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -208,22 +209,25 @@ def loopback_command(
         raise typer.BadParameter("--netlist simulates VHDL netlists: use --simulator ghdl")
     if not bag.exists():
         raise RfcError(f"bag '{bag}' does not exist", hint="give the path of a .bag, .mcap or .db3")
-    options = {
-        "topic": topic,
-        "middleware": middleware,
-        "width": width,
-        "count": count,
-        "msg_paths": tuple(msg_path or ()),
-        "include": tuple(include or ()),
-        "exclude": tuple(exclude or ()),
-        "simulator": simulator.value,
-        "netlist": netlist,
-    }
+    run = partial(
+        loopback,
+        type_name,
+        bag,
+        topic=topic,
+        middleware=middleware,
+        width=width,
+        count=count,
+        msg_paths=tuple(msg_path or ()),
+        include=tuple(include or ()),
+        exclude=tuple(exclude or ()),
+        simulator=simulator.value,
+        netlist=netlist,
+    )
     if keep is None:
-        report = loopback(type_name, bag, **options)
+        report = run()
     else:
         with kept_in(keep, "rfc msg loopback") as scratch:
-            report = loopback(type_name, bag, **options, workdir=scratch)
+            report = run(workdir=scratch)
     note_skipped(bag, report.skipped)
     if as_json:
         print(json.dumps(report.as_json(), indent=2))

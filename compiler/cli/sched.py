@@ -9,9 +9,9 @@ from typing import Annotated, Any
 
 import typer
 from rich.console import Console
-from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
+from rfc.cli.progress import run_counted
 from rfc.errors import RfcError
 from rfc.files.directory import replace_directory
 from rfc.lib.schedulers.generate import (
@@ -117,27 +117,14 @@ def _sweep(
     specs: list[AnySchedulerSpec], use_cache: bool, as_json: bool, jobs: int, cluster: str | None
 ) -> None:
     """One synthesis job per N, here or on a Dask cluster; the reports in N's order."""
-    from rfc.cluster import run_jobs
-
-    console = Console(stderr=True, highlight=False)
-    with Progress(
-        TextColumn("synthesizing"),
-        BarColumn(),
-        MofNCompleteColumn(),
-        TimeElapsedColumn(),
-        console=console,
-        transient=True,
-        disable=not console.is_terminal,
-    ) as bar:
-        task = bar.add_task("synthesizing", total=len(specs))
-        reports, failures = run_jobs(
-            partial(_report_job, use_cache=use_cache),
-            specs,
-            lambda spec: f"N={spec.n}",
-            workers=jobs,
-            address=cluster,
-            finished=lambda *_: bar.advance(task),
-        )
+    reports, failures = run_counted(
+        "synthesizing",
+        partial(_report_job, use_cache=use_cache),
+        specs,
+        lambda spec: f"N={spec.n}",
+        workers=jobs,
+        address=cluster,
+    )
     done = [report for report in reports if report is not None]
     if as_json:
         print(json.dumps(done, indent=2))

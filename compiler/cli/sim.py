@@ -21,20 +21,21 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 from rich.console import Console
-from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
 from rfc.cli.notes import note_skipped_topics
+from rfc.cli.progress import counting_bar
 from rfc.errors import RfcError, did_you_mean
 from rfc.runtime.core import DEFAULT_DEPTH, QueuePolicy
 from rfc.runtime.stall import DEFAULT_STALL_CYCLES
 
 if TYPE_CHECKING:
+    from rfc.ir.model import Design
     from rfc.lower.runtime_plan import DesignPlan
     from rfc.messages.rosbags_adapter import BagMessage, MessageTypes
     from rfc.runtime.account import Account
     from rfc.runtime.core import Published, Runtime
-    from rfc.runtime.hardware import SimulationTop
+    from rfc.sim.hardware import SimulationTop
 
 
 class Backend(StrEnum):
@@ -167,9 +168,9 @@ def sim(
     from rfc.messages.rosbags_adapter import check_bag_path, message_types, write_bag
     from rfc.passes.pipeline import PIPELINE
     from rfc.runtime.core import QueueConfig, Runtime
-    from rfc.runtime.hls_csim import HlsOnProcessor, attach_c_simulations
+    from rfc.sim.hls_csim import HlsOnProcessor, attach_c_simulations
 
-    # HLS accelerators run on the processor, C-simulated (rfc.runtime.hls_csim)
+    # HLS accelerators run on the processor, C-simulated (rfc.sim.hls_csim)
     design = compile_spec(str(spec), pipeline=(HlsOnProcessor(), *PIPELINE))
     project = design.project
     check_bag_path(out, project.middleware)
@@ -201,6 +202,7 @@ def sim(
         types,
         topic_names,
         runtime,
+        design,
         backend,
         drain_cycles,
         stall_cycles,
@@ -208,16 +210,7 @@ def sim(
         top_provider,
         simulator,
     )
-    console = Console(stderr=True, highlight=False)
-    with Progress(
-        TextColumn("replaying"),
-        BarColumn(),
-        MofNCompleteColumn(),
-        TimeElapsedColumn(),
-        console=console,
-        transient=True,
-        disable=as_json or not console.is_terminal,
-    ) as progress:
+    with counting_bar("replaying", hidden=as_json) as progress:
         task = progress.add_task("replay", total=run.total())
         published, account = run.execute(lambda done: progress.update(task, completed=done))
     write_bag(
@@ -243,6 +236,7 @@ class _Run:
     types: MessageTypes
     topic_names: dict[str, str]
     runtime: Runtime
+    design: Design
     backend: Backend
     drain_cycles: int
     stall_cycles: int
@@ -250,7 +244,7 @@ class _Run:
     top_provider: str | None
     simulator: Simulator | None = None
     warnings: list[str] = field(default_factory=list)
-    """What the replay gave up waiting for (`rfc.runtime.busy`), filled by `execute`."""
+    """What the replay gave up waiting for (`rfc.sim.busy`), filled by `execute`."""
 
     def total(self) -> int:
         from rfc.messages.rosbags_adapter import bag_topics
@@ -265,11 +259,11 @@ class _Run:
             yield replace(message, topic=self.topic_names[message.topic])
 
     def execute(self, progress: Callable[[int], None]) -> tuple[list[Published], Account]:
-        from rfc.runtime.hardware import DEFAULT_TOP_PROVIDER, load_top_provider
         from rfc.runtime.replay import replay
+        from rfc.sim.hardware import DEFAULT_TOP_PROVIDER, load_top_provider
         from rfc.toolchain import CosimError
 
-        runtime, design = self.runtime, self.runtime.plan.design
+        runtime, design = self.runtime, self.design
         if not runtime.plan.has_logic:
             with closing(self.messages()) as messages:
                 return replay(runtime, messages, None, progress), runtime.account
@@ -293,13 +287,13 @@ class _Run:
     def _ghdl(
         self, top: SimulationTop, scratch: Path, progress: Callable[[int], None]
     ) -> tuple[list[Published], Account]:
-        from rfc.runtime.hardware import simulate_with_ghdl
+        from rfc.sim.hardware import simulate_with_ghdl
 
         simulator = self._simulator(top)
         if simulator == "verilator":
             return self._engine(top, progress), self.runtime.account
         run = simulate_with_ghdl(
-            self.runtime.plan.design,
+            self.design,
             self.bag.resolve(),
             self.topic_names,
             top,
@@ -316,8 +310,8 @@ class _Run:
         return run.published, run.account
 
     def _engine(self, top: SimulationTop, progress: Callable[[int], None]) -> list[Published]:
-        """Verilator with the DMA streams driven in C++ (`rfc.runtime.stream_engine`)."""
-        from rfc.runtime.stream_engine import EngineError, simulate_with_engine
+        """Verilator with the DMA streams driven in C++ (`rfc.sim.stream_engine`)."""
+        from rfc.sim.stream_engine import EngineError, simulate_with_engine
         from rfc.toolchain import CosimError
         from rfc.toolchain.verilator import VerilatorError
 
@@ -327,6 +321,7 @@ class _Run:
                     self.runtime,
                     messages,
                     top,  # type: ignore[arg-type]  # _simulator checked it has Verilog
+                    clock_mhz=self.design.project.clock_mhz,
                     drain_cycles=self.drain_cycles,
                     stall_cycles=self.stall_cycles,
                     seed=self.seed,
@@ -352,7 +347,7 @@ class _Run:
         return self.simulator.value
 
     def _myhdl(self, top: SimulationTop, progress: Callable[[int], None]) -> list[Published]:
-        from rfc.runtime.myhdl_sim import simulate_with_myhdl
+        from rfc.sim.myhdl_sim import simulate_with_myhdl
 
         factory = getattr(top, "myhdl", None)
         if factory is None:
@@ -372,7 +367,7 @@ class _Run:
                 top.bus_width,
                 self.runtime,
                 messages,
-                clock_mhz=self.runtime.plan.design.project.clock_mhz,
+                clock_mhz=self.design.project.clock_mhz,
                 drain_cycles=self.drain_cycles,
                 stall_cycles=self.stall_cycles,
                 seed=self.seed,

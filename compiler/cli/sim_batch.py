@@ -22,9 +22,9 @@ from typing import Any
 
 import typer
 from rich.console import Console
-from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
+from rfc.cli.progress import run_counted
 from rfc.errors import RfcError
 
 #: Suffixes of the bag files a batch directory is searched for.
@@ -99,8 +99,6 @@ def run_batch(
     Raises:
         RfcError: No bag in the directory, OUT is a file, or some replays failed.
     """
-    from rfc.cluster import run_jobs
-
     bags = bags_in(directory)
     if not bags:
         raise RfcError(
@@ -115,25 +113,15 @@ def run_batch(
     out.mkdir(parents=True, exist_ok=True)
     options = _options(ctx)
     batch = [_job(spec, bag, out, options) for bag in bags]
-    console = Console(stderr=True, highlight=False)
-    with Progress(
-        TextColumn("replaying bags"),
-        BarColumn(),
-        MofNCompleteColumn(),
-        TimeElapsedColumn(),
-        console=console,
-        transient=True,
-        disable=as_json or not console.is_terminal,
-    ) as progress:
-        task = progress.add_task("bags", total=len(batch))
-        results, failures = run_jobs(
-            replay,
-            batch,
-            lambda job: f"bag {job.bag.name}",
-            workers=jobs,
-            address=cluster,
-            finished=lambda *_: progress.advance(task),
-        )
+    results, failures = run_counted(
+        "replaying bags",
+        replay,
+        batch,
+        lambda job: f"bag {job.bag.name}",
+        workers=jobs,
+        address=cluster,
+        hidden=as_json,
+    )
     accounts = [result for result in results if result is not None]
     if as_json:
         failed = [{"job": f.job, "error": f.error} for f in failures]

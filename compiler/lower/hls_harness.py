@@ -1,6 +1,6 @@
 """The C-simulation harness of an HLS accelerator: a ``main`` around its top function.
 
-The harness serves calls over a pipe in a plain binary format (`rfc.runtime.hls_csim` is the
+The harness serves calls over a pipe in a plain binary format (`rfc.sim.hls_csim` is the
 other end), all little-endian in each value's C type (a bool is one byte):
 
 * a call: one byte ``1``; then per input port, its struct's fields in declaration order, then
@@ -16,8 +16,8 @@ the answers have their own descriptor.
 
 from __future__ import annotations
 
-from rfc.lower.hls_signature import HlsArgument
-from rfc.lower.hls_types import CStream, MessageStruct
+from rfc.hls.c_types import CStream, MessageStruct
+from rfc.hls.signature import HlsArgument
 
 _PRELUDE = """\
 #include <cstdio>
@@ -84,7 +84,7 @@ def hls_harness(
     Args:
         accelerator_name: Names the generated header it includes.
         top: The top function.
-        structs: The ports' structs (`rfc.lower.hls_types.message_structs`).
+        structs: The ports' structs (`rfc.hls.c_types.message_structs`).
         scalars: The top function's arguments when it takes the fields one by one (declared
             here as the source declares them), else empty: it takes the structs.
     """
@@ -180,6 +180,8 @@ def _read_port(struct: MessageStruct) -> list[str]:
     return lines
 
 
+# The mirror of `_read_port`, not a copy: an output's streams go back with their length first,
+# read from the stream the function filled, where an input's length came from its struct.
 def _write_port(struct: MessageStruct) -> list[str]:
     lines = [f"        put({struct.port}{f.access});" for f in struct.fields]
     for stream in struct.streams:

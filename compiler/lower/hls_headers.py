@@ -1,7 +1,7 @@
 """``hls/<accelerator>_messages.h``: the header each struct-taking HLS accelerator includes.
 
 Written by ``rfc build`` (with or without the logic) for every HLS accelerator whose top
-function takes message structs or streams (`rfc.lower.hls_types`), so that it can be developed
+function takes message structs or streams (`rfc.hls.c_types`), so that it can be developed
 and run in Vitis HLS; `rfc sim` compiles its C simulation against the same text.
 """
 
@@ -10,11 +10,11 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping
 
 from rfc.errors import RfcError
+from rfc.hls.c_types import hls_header
+from rfc.hls.signature import ArgumentKind, read_top_function
 from rfc.ir.model import AcceleratorKind, AcceleratorType, Block, BlockKind, Design, Direction
 from rfc.lib.converters.ports import Port
 from rfc.lower.artifacts import Artifact, BuildOptions
-from rfc.lower.hls_signature import ArgumentKind, read_top_function
-from rfc.lower.hls_types import hls_header
 from rfc.lower.system.interfaces import accelerator_pins
 
 #: Bus width the signatures are read at: a struct does not depend on it.

@@ -16,12 +16,12 @@ from dataclasses import replace
 from enum import StrEnum
 
 from rfc.errors import RfcError, did_you_mean
+from rfc.hls.c_types import hls_header, hls_stub
+from rfc.hls.ports import logic_refusal
 from rfc.ir.model import AcceleratorType, Block, Design, Direction
 from rfc.ir.model import Port as ModelPort
 from rfc.lib.converters.ports import PortRole, member_text
 from rfc.lower.hls_headers import port_signatures
-from rfc.lower.hls_ports import logic_refusal
-from rfc.lower.hls_types import hls_header, hls_stub
 from rfc.lower.system.interfaces import Pin, accelerator_pins
 from rfc.messages.rosbags_adapter import MessageTypes
 from rfc.passes.base import types_of

@@ -18,6 +18,7 @@ from math import ceil
 from typing import Any, ClassVar
 
 from rfc.errors import RfcError, SourceLocation
+from rfc.hls.ports import accelerator_core, input_holds
 from rfc.ir.infrastructure import Converter
 from rfc.ir.model import (
     AcceleratorKind,
@@ -128,6 +129,7 @@ def record_first(design: Design, converter: Converter) -> bool:
     """
     infrastructure = design.infrastructure
     assert infrastructure is not None
+    producer: str | None
     if converter.crossing is not None:
         producer = converter.crossing.hardware.split(".")[0]
     else:
@@ -387,20 +389,8 @@ def check_buffer_memory(design: Design, buffers: Mapping[str, tuple[Buffer, ...]
     )
 
 
-def hls_core(accelerator: AcceleratorType, signatures: Mapping[str, Sequence[Port]]) -> object:
-    """Match an HLS top function with its ports as the lowering does.
-
-    Imported late: the lowering imports this module.
-    """
-    from rfc.lower.hls_ports import accelerator_core
-
-    return accelerator_core(accelerator, signatures)
-
-
 def hls_fifos(block: Block, width: int, limits: Limits) -> tuple[Buffer, ...]:
     """The FIFOs an HLS block's wrapper holds its input ports' earlier streams in."""
-    from rfc.lower.hls_ports import input_holds
-
     return tuple(buffer for _, buffer in input_holds(block, width, limits))
 
 
@@ -411,5 +401,5 @@ _SOURCE_CHECKS: dict[
 ] = {
     AcceleratorKind.MYHDL: lambda a, signatures: takes_interfaces(a, block_function(a), signatures),
     AcceleratorKind.VHDL: lambda a, signatures: vhdl_entity(a, flat_ports(signatures)),
-    AcceleratorKind.HLS: hls_core,
+    AcceleratorKind.HLS: accelerator_core,
 }

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import socket
 import struct
 import subprocess
@@ -20,6 +21,16 @@ from rfc.runtime.loopback import PassThroughLogic
 from rfc.runtime.node import NodeCore
 from rfc.runtime.replay import replay
 from tests.runtime.support import compiled, pose_messages
+
+
+def dma_over(sock: socket.socket, max_transfer: int = 1 << 20) -> FileDma:
+    """The DMA on its own copy of the socket's descriptor.
+
+    The node closes the DMA's descriptor and the socket closes its own when collected: sharing
+    one number, the later close would hit whatever file has reused it by then.
+    """
+    descriptor = os.dup(sock.fileno())
+    return FileDma(descriptor, descriptor, max_transfer)
 
 
 def fake_logic(sock: socket.socket, logic: PassThroughLogic) -> None:
@@ -48,7 +59,7 @@ def test_node_core_moves_messages_through_the_dma_devices(tmp_path):
         if len(published) == len(messages):
             done.set()
 
-    dma = FileDma(ours.fileno(), ours.fileno(), 1 << 20)
+    dma = dma_over(ours)
     core = NodeCore(plan, dma, publish, QueueConfig(depth=len(messages)), clock=lambda: 7)
     assert core.topics == ("/amcl_pose",)
     core.start()
@@ -69,7 +80,7 @@ def test_messages_offered_faster_than_the_dma_overflow_and_are_counted(tmp_path)
     design = compiled(tmp_path, "pose_mixed.yaml")
     plan = DesignPlan(design)
     ours, theirs = socket.socketpair(socket.AF_UNIX, socket.SOCK_SEQPACKET)
-    core = NodeCore(plan, FileDma(ours.fileno(), ours.fileno(), 1 << 20), lambda _: None)
+    core = NodeCore(plan, dma_over(ours), lambda _: None)
     for message in pose_messages(plan.types, 15):  # not started: nothing leaves the queue
         core.on_message(message.topic, message.data)
     ours.shutdown(socket.SHUT_RDWR)
@@ -155,7 +166,7 @@ def test_the_node_reads_the_logics_drop_counters_and_logs_each_change(tmp_path):
     logic = threading.Thread(target=answer)
     logic.start()
     lines = []
-    dma = FileDma(ours.fileno(), ours.fileno(), 1 << 20)
+    dma = dma_over(ours)
     core = NodeCore(plan, dma, lambda _: None, status_period=60, log=lines.append)
     core.start()
     assert core.read_status(10)

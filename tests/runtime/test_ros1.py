@@ -11,13 +11,12 @@ import threading
 from rfc.driver import compile_spec
 from rfc.ir.pass_through import pass_through_routes
 from rfc.messages.rosbags_adapter import message_types
-from rfc.runtime.dma_device import FileDma
 from rfc.runtime.loopback import PassThroughLogic
 from rfc.runtime.node import NodeCore
 from rfc.runtime.plan import load_plan
 from rfc.runtime.ros1 import ros1_name
 from tests.runtime.support import system_copy
-from tests.runtime.test_node import fake_logic
+from tests.runtime.test_node import dma_over, fake_logic
 from tests.support.cli import run_rfc
 
 STAMPED = "geometry_msgs/msg/PoseStamped"
@@ -67,7 +66,7 @@ def test_the_ros1_node_loop_moves_messages_through_the_logic_from_the_shipped_pl
         if len(published) == len(messages):
             done.set()
 
-    core = NodeCore(plan, FileDma(ours.fileno(), ours.fileno(), plan.max_transfer), publish)
+    core = NodeCore(plan, dma_over(ours, plan.max_transfer), publish)
     core.start()
     for data in messages:
         core.on_message("/groundtruth", data)

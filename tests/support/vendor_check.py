@@ -131,7 +131,7 @@ def check_vivado(record: Record) -> dict[str, dict[str, str]]:
         assert name not in cells, f"cell {name} created twice"
         if kind[0] == "ip" and what.startswith("xilinx.com:hls:"):
             # an HLS core: its ports are the ones the top level declares for it (the contract
-            # of rfc.lower.hls_signature with Vitis HLS)
+            # of rfc.hls.signature with Vitis HLS)
             core = what.split(":")[2]
             cores = component_ports([f for f in files if f.suffix == ".vhd"])
             assert core in cores, f"HLS core {core} is not declared by the generated VHDL"

@@ -6,7 +6,7 @@ blocks are elaborated with the convention's port signals and converted; VHDL ent
 with GHDL's parser and checked against the convention; an HLS top function becomes the Vitis
 HLS core (an IP cell) beside rfc's ap_ctrl wrapper (`rfc.lib.hls.adapter`): the core reads its
 fixed inputs straight from the subscribers' fields, the wrapper drives its control, adapts its
-streams and lengths (`rfc.lower.hls_ports` names the core's ports) and holds its outputs.
+streams and lengths (`rfc.hls.ports` names the core's ports) and holds its outputs.
 Cell ports named ``clk``/``ap_clk`` go on the clock, ``rst``/``ap_rst`` on the reset.
 """
 
@@ -18,17 +18,17 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from rfc.errors import RfcError
-from rfc.ir.model import AcceleratorKind, AcceleratorType, Block
-from rfc.lib.converters.ports import Direction, Port, PortRole
-from rfc.lib.hls.adapter import AdapterShape, StreamPort
-from rfc.lib.interface import typed_block
-from rfc.lower.hls_ports import (
+from rfc.hls.ports import (
     CorePort,
     CoreStream,
     accelerator_core,
     input_holds,
     vitis_directives,
 )
+from rfc.ir.model import AcceleratorKind, AcceleratorType, Block
+from rfc.lib.converters.ports import Direction, Port, PortRole
+from rfc.lib.hls.adapter import AdapterShape, StreamPort
+from rfc.lib.interface import typed_block
 from rfc.lower.netlist import EntityDecl, Mode, PortDecl
 from rfc.lower.system.components import (
     Component,
@@ -77,7 +77,7 @@ class HlsCore:
         top: The top function.
         sources: Its C++ sources.
         directives: Vitis HLS directives (tcl) that give the core its ports
-            (`rfc.lower.hls_ports.vitis_directives`).
+            (`rfc.hls.ports.vitis_directives`).
     """
 
     accelerator: str

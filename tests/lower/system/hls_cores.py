@@ -14,7 +14,7 @@ from rfc.driver import compile_spec
 from rfc.lower.system.generate import generate_system
 from rfc.messages.rosbags_adapter import MessageTypes, read_bag
 from rfc.runtime.core import Published, QueueConfig
-from rfc.runtime.hardware import simulate_with_ghdl
+from rfc.sim.hardware import simulate_with_ghdl
 from tests.support.cli import run_rfc
 from tests.support.vendor_check import Record, run_script
 

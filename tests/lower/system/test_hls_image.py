@@ -21,7 +21,7 @@ import numpy as np
 import pytest
 
 from rfc.driver import compile_spec
-from rfc.lower.hls_ports import input_holds
+from rfc.hls.ports import input_holds
 from rfc.messages.rosbags_adapter import message_types, write_bag
 from tests.lower.system.hls_cores import (
     IMAGE_PIPELINE,

@@ -8,7 +8,7 @@ so ``QuaternionToEuler(double x, ..., double *roll, ...)`` serves Quaternion →
 the core the ports ``ap_clk ap_rst ap_start ap_done ap_idle ap_ready``, one port per input
 named like the argument, and ``<name>``/``<name>_ap_vld`` per output; rfc's wrapper drives them.
 
-Or, with rfc's generated header (`rfc.lower.hls_types`), one struct per port (inputs by value,
+Or, with rfc's generated header (`rfc.hls.c_types`), one struct per port (inputs by value,
 outputs by pointer) followed by the port's ``hls::stream<T>`` references: such arguments are read
 as `ArgumentKind.STRUCT` and `ArgumentKind.STREAM`.
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from rfc.errors import RfcError
-from rfc.lower.hls_signature import ArgumentKind, read_top_function
+from rfc.hls.signature import ArgumentKind, read_top_function
 
 
 def test_structs_and_streams_are_read_with_their_kind_and_line(tmp_path):

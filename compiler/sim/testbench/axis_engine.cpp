@@ -1,4 +1,4 @@
-// The DMA streams of a replay, driven in C++ around the Verilated logic (rfc.runtime.stream_engine).
+// The DMA streams of a replay, driven in C++ around the Verilated logic (rfc.sim.stream_engine).
 //
 // The processor side stays in Python, but only at transfer granularity: every beat, the idle
 // cycles of the PS->PL source and the backpressure of the PL->PS sink are simulated here.

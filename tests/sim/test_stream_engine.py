@@ -23,9 +23,9 @@ from rfc.lower.hardware import simulation_top
 from rfc.lower.runtime_plan import DesignPlan
 from rfc.messages.rosbags_adapter import message_types, read_bag, write_bag
 from rfc.runtime.core import QueueConfig, Runtime
-from rfc.runtime.hardware import simulate_with_ghdl
 from rfc.runtime.stall import DEFAULT_STALL_CYCLES
-from rfc.runtime.stream_engine import simulate_with_engine
+from rfc.sim.hardware import simulate_with_ghdl
+from rfc.sim.stream_engine import simulate_with_engine
 from tests.examples.multi_type.test_system import SPEC, TOPICS, image, scan, twist
 
 
@@ -60,7 +60,13 @@ def test_the_engine_replays_a_random_bag_as_the_cocotb_harness_does(tmp_path, sp
     )
     runtime = Runtime(DesignPlan(design), QueueConfig())
     types = message_types("ros2")
-    published = simulate_with_engine(runtime, read_bag(bag, types, topics), top, **options)
+    published = simulate_with_engine(
+        runtime,
+        read_bag(bag, types, topics),
+        top,
+        clock_mhz=design.project.clock_mhz,
+        **options,
+    )
     assert [(p.topic, p.data) for p in published] == [(p.topic, p.data) for p in harness.published]
     assert runtime.account.to_json() == harness.account.to_json()
     assert runtime.account.dropped == {}

@@ -1,6 +1,6 @@
 """Replay a bag through Verilated logic whose DMA streams are driven in C++, not by cocotb.
 
-The cocotb harness (`rfc.runtime.cosim`) runs Python on every clock cycle: its drivers move one
+The cocotb harness (`rfc.sim.cosim`) runs Python on every clock cycle: its drivers move one
 beat at a time and cost far more than the logic itself. Here the testbench
 ``testbench/axis_engine.cpp`` (built by `rfc.toolchain.verilator.build_stream_engine`) moves the
 beats, idles the PS→PL stream and holds back the PL→PS stream with the same seeded pattern,
@@ -10,7 +10,7 @@ transfers are handed over, with the cycle they completed at, when it stops. The 
 side — queues, software scheduler, reassembly, software accelerators, the account — stays in
 `Runtime`, called once per transfer, with the same rules as the cocotb harness: arrivals at
 their recorded times with idle skipped (`rfc.runtime.arrivals`), the stall watchdog and the
-wait for answers (`rfc.runtime.stall`), the logic's ``busy`` bits (`rfc.runtime.busy`, read with
+wait for answers (`rfc.runtime.stall`), the logic's ``busy`` bits (`rfc.sim.busy`, read with
 the status registers), outputs stamped with the newest input offered so far.
 """
 
@@ -28,11 +28,11 @@ from typing import Protocol
 from rfc.lib.converters.malformed import DROP_REASONS, status_port
 from rfc.messages.rosbags_adapter import BagMessage
 from rfc.runtime.arrivals import IDLE_FRACTION, ArrivalClock
-from rfc.runtime.busy import BusyWatch
 from rfc.runtime.core import Published, Runtime
 from rfc.runtime.plan import ToTopic
 from rfc.runtime.protocol import Chunk
 from rfc.runtime.stall import AnswerWait, StallWatch, largest_output, pending_work
+from rfc.sim.busy import BusyWatch
 from rfc.toolchain.verilator import build_stream_engine
 
 #: The engine's C++ source.
@@ -347,6 +347,7 @@ def simulate_with_engine(
     messages: Iterable[BagMessage],
     top: VerilogTop,
     *,
+    clock_mhz: float,
     drain_cycles: int,
     stall_cycles: int,
     seed: int,
@@ -359,11 +360,12 @@ def simulate_with_engine(
         runtime: The processor side (its account is completed, the logic's drops included).
         messages: Input messages in time order, on the spec's topics.
         top: The logic's top level with its ``verilog`` files in compile order.
+        clock_mhz: The logic's clock (message arrivals convert to its cycles).
         drain_cycles: Cycles of silence after which the system is idle.
         stall_cycles: The stall watchdog's base window (`rfc.runtime.stall`).
         seed: Seed of the idle/backpressure pattern.
         progress: Called now and then with the number of messages offered so far.
-        warnings: Receives what the replay gave up waiting for (`rfc.runtime.busy`).
+        warnings: Receives what the replay gave up waiting for (`rfc.sim.busy`).
 
     Returns:
         Everything published, in order.
@@ -377,7 +379,6 @@ def simulate_with_engine(
     lanes = top.bus_width // 8
     engine = StreamEngine(binary, seed)
     try:
-        clock_mhz = runtime.plan.design.project.clock_mhz
         names = _busy_names(top)
         busy = BusyWatch(names, stall_cycles) if names else None
         loop = EngineReplay(engine, runtime, clock_mhz, lanes, drain_cycles, stall_cycles, busy)

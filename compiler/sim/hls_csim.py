@@ -3,7 +3,7 @@
 `rfc sim` moves HLS accelerators to the processor (`HlsOnProcessor`, a pass in front of the
 pipeline) and runs each as a ROS-SW accelerator whose function is a `CSimulation`: the top
 function compiled by the system's g++ with rfc's generated header
-(`rfc.lower.hls_types`), a generated harness (`rfc.lower.hls_harness`, which documents the
+(`rfc.hls.c_types`), a generated harness (`rfc.lower.hls_harness`, which documents the
 binary format on the pipe) and rfc's own ``hls_stream.h`` (``rfc/lib/hls/include``). A build is
 compiled once and kept by the hash of everything that goes into it.
 """
@@ -26,11 +26,11 @@ from typing import IO, Any, ClassVar
 import numpy as np
 
 from rfc.errors import RfcError, SourceLocation
+from rfc.hls.c_types import CStream, MessageStruct, hls_header, message_structs
+from rfc.hls.signature import ArgumentKind, HlsArgument, read_top_function
 from rfc.ir.model import AcceleratorKind, AcceleratorType, Design
 from rfc.lower.hls_harness import hls_harness
 from rfc.lower.hls_headers import first_block, port_signatures
-from rfc.lower.hls_signature import ArgumentKind, HlsArgument, read_top_function
-from rfc.lower.hls_types import CStream, MessageStruct, hls_header, message_structs
 from rfc.messages.codec import default_values
 from rfc.messages.layout import Layout
 from rfc.messages.rosbags_adapter import MessageTypes

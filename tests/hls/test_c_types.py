@@ -9,10 +9,10 @@ from pathlib import Path
 import pytest
 
 from rfc.errors import RfcError
+from rfc.hls.c_types import hls_header, hls_stub, message_struct
 from rfc.ir.model import Direction
 from rfc.lib.converters.plan import plan
 from rfc.lib.converters.ports import Side, accelerator_signature
-from rfc.lower.hls_types import hls_header, hls_stub, message_struct
 from rfc.messages.layout import flatten
 from rfc.messages.limits import Limits
 from rfc.messages.rosbags_adapter import message_types

@@ -1,4 +1,4 @@
-"""Simulated hardware in MyHDL: the same replay as `rfc.runtime.cosim`, for logic written in MyHDL.
+"""Simulated hardware in MyHDL: the same replay as `rfc.sim.cosim`, for logic written in MyHDL.
 
 Where the whole logic is a MyHDL design (its top provider gives a ``myhdl`` block factory that
 takes the contract's port signals by name), it runs in MyHDL's own simulator, in this process:
@@ -6,7 +6,7 @@ no GHDL, no files. One clocked process plays the processor: it samples both AXI-
 handshakes at each rising edge, offers messages as they arrive (`rfc.runtime.arrivals`), drives
 the PS→PL stream with the software scheduler's next chunk (with random idle cycles between
 beats) and takes PL→PS beats with random backpressure; quiet cycles count only while the logic's
-``busy`` bits (where its top has them, `rfc.runtime.busy`) are low. Same seed, same runtime,
+``busy`` bits (where its top has them, `rfc.sim.busy`) are low. Same seed, same runtime,
 same account as the GHDL backend; the cycle-level timing of the two testbenches differs slightly.
 """
 
@@ -20,10 +20,10 @@ from myhdl import ResetSignal, Signal, StopSimulation, block, delay, instance, i
 
 from rfc.messages.rosbags_adapter import BagMessage
 from rfc.runtime.arrivals import IDLE_FRACTION, ArrivalClock
-from rfc.runtime.busy import BusyWatch
 from rfc.runtime.core import Published, Runtime
 from rfc.runtime.protocol import Chunk
 from rfc.runtime.stall import DEFAULT_STALL_CYCLES, StallWatch, largest_output, pending_work
+from rfc.sim.busy import BusyWatch
 
 MyhdlFactory = Callable[..., Any]
 
@@ -65,7 +65,7 @@ def simulate_with_myhdl(
         seed: Seed of the random idle and backpressure.
         progress: Called with the number of messages offered so far.
         busy: The blocks the logic's ``busy`` port watches (none: it has no such port).
-        warnings: Receives what the replay gave up waiting for (`rfc.runtime.busy`).
+        warnings: Receives what the replay gave up waiting for (`rfc.sim.busy`).
 
     Raises:
         StallError: The logic stalled (`rfc.runtime.stall`).

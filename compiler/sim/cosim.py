@@ -1,6 +1,6 @@
 """The runtime loop inside a cocotb simulation of the whole programmable logic (GHDL).
 
-This module runs in the simulator's Python, started by `rfc.runtime.hardware`. It reads the
+This module runs in the simulator's Python, started by `rfc.sim.hardware`. It reads the
 job (a JSON file named by ``RFC_SIM_JOB``), compiles the spec, and replays the bag: messages
 arrive at their recorded times on the simulated clock, wait in the processor's callback queues,
 and go to the logic one DMA transfer at a time through a cocotbext-axi source on the PS→PL
@@ -10,7 +10,7 @@ stamp of the newest input offered so far.
 
 Idle time is skipped (`rfc.runtime.arrivals`): when nothing waits, nothing moves and the logic
 has been quiet for the job's drain window (and is not still expected to answer a transfer,
-`rfc.runtime.stall.AnswerWait`, nor busy by its ``busy`` bits, `rfc.runtime.busy`), the next
+`rfc.runtime.stall.AnswerWait`, nor busy by its ``busy`` bits, `rfc.sim.busy`), the next
 message arrives at once. After the last
 message the run ends once the system is idle the same way. A logic that stops completing
 transfers while work is pending ends the run with the stall watchdog's report
@@ -38,17 +38,20 @@ from rfc.lib.converters.malformed import DROP_REASONS, status_port
 from rfc.lower.runtime_plan import DesignPlan
 from rfc.messages.rosbags_adapter import message_types, read_bag
 from rfc.runtime.arrivals import IDLE_FRACTION, ArrivalClock
-from rfc.runtime.busy import BusyWatch
 from rfc.runtime.core import Published, QueueConfig, QueuePolicy, Runtime
 from rfc.runtime.protocol import Chunk
 from rfc.runtime.records import write_records
 from rfc.runtime.stall import AnswerWait, StallError, StallWatch, largest_output, pending_work
 from rfc.runtime.status import decode_status, is_status, status_request
+from rfc.runtime.stream_top import BusyTop, StreamTop
+from rfc.sim.busy import BusyWatch
+from rfc.sim.hardware import CosimJob
 
 
 class _Replay:
-    def __init__(self, dut: object, job: dict, runtime: Runtime) -> None:
+    def __init__(self, dut: StreamTop, job: CosimJob, plan: DesignPlan, runtime: Runtime) -> None:
         self.job = job
+        self.plan = plan
         self.runtime = runtime
         self.clock = dut.aclk
         self.period_ns = 1000.0 / job["clock_mhz"]
@@ -62,8 +65,8 @@ class _Replay:
             job["stall_cycles"], len(dut.s_axis_mm2s_tkeep), largest_output(runtime)
         )
         self.answer = AnswerWait(len(dut.s_axis_mm2s_tkeep))
-        self.dut = dut
-        names = tuple(job["busy"]) if hasattr(dut, "busy") else ()
+        self.busy_port = dut.busy if isinstance(dut, BusyTop) else None
+        names = tuple(job["busy"]) if self.busy_port is not None else ()
         self.busy_bits = BusyWatch(names, job["stall_cycles"])
         self.working = False
         self.source = AxiStreamSource(
@@ -151,9 +154,9 @@ class _Replay:
 
     def logic_working(self) -> bool:
         """Whether the logic's busy bits say it still works (a top without them: never)."""
-        if not self.busy_bits.names:
+        if self.busy_port is None or not self.busy_bits.names:
             return False
-        return self.busy_bits.busy(self.cycles(), int(self.dut.busy.value))
+        return self.busy_bits.busy(self.cycles(), int(self.busy_port.value))
 
     def receiving(self) -> bool:
         return bool(self.sink.active) or not self.sink.empty()
@@ -163,9 +166,9 @@ class _Replay:
 
     async def replay(self) -> None:
         types = message_types(
-            self.runtime.plan.types.middleware,
-            self.runtime.plan.types.distro,
-            tuple(str(p) for p in self.runtime.plan.design.project.msg_paths),
+            self.plan.types.middleware,
+            self.plan.types.distro,
+            tuple(str(p) for p in self.plan.design.project.msg_paths),
             (self.job["bag"],),
         )
         progress = Path(self.job["progress"])
@@ -206,22 +209,23 @@ class _Replay:
 
 
 @cocotb.test()
-async def replay_through_logic(dut: object) -> None:
+async def replay_through_logic(dut: StreamTop) -> None:
     """Replay the job's bag through the simulated logic and write the results."""
     for name in ("cocotb.echo_top", "cocotb"):
         logging.getLogger(name).setLevel(logging.WARNING)
-    job = json.loads(Path(os.environ["RFC_SIM_JOB"]).read_text())
+    job: CosimJob = json.loads(Path(os.environ["RFC_SIM_JOB"]).read_text())
     design = compile_spec(job["spec"])
     queues = QueueConfig(QueuePolicy(job["policy"]), job["depth"])
-    runtime = Runtime(DesignPlan(design), queues, screen=job["screen"])
-    cocotb.start_soon(Clock(dut.aclk, 1000.0 / job["clock_mhz"], unit="ns").start())
+    plan = DesignPlan(design)
+    runtime = Runtime(plan, queues, screen=job["screen"])
+    Clock(dut.aclk, 1000.0 / job["clock_mhz"], unit="ns").start()
     dut.aresetn.value = 0
     await ClockCycles(dut.aclk, 4)
     dut.aresetn.value = 1
     await ClockCycles(dut.aclk, 2)
     # The streams' drivers start after the reset: a synthesized netlist's registers have no
     # value before it.
-    replay = _Replay(dut, job, runtime)
+    replay = _Replay(dut, job, plan, runtime)
     cocotb.start_soon(replay.send())
     cocotb.start_soon(replay.receive())
     try:

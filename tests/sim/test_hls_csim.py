@@ -16,11 +16,11 @@ from rfc.messages.layout import flatten
 from rfc.messages.rosbags_adapter import message_types, read_bag, write_bag
 from rfc.messages.values import values_to_message
 from rfc.passes.pipeline import PIPELINE
-from rfc.runtime.hls_csim import HlsOnProcessor, attach_c_simulations
+from rfc.sim.hls_csim import HlsOnProcessor, attach_c_simulations
 from tests.support.cli import run_rfc
 
 ROOT = Path(__file__).resolve().parents[2]
-SYSTEM = Path(__file__).parent / "systems" / "hls"
+SYSTEM = ROOT / "tests" / "runtime" / "systems" / "hls"
 KINDS = "rfc_kinds/msg/Kinds"
 BAG_SUFFIX = {"ROS": ".bag", "ROS2": ".mcap"}
 MIDDLEWARE = {"ROS": "ros1", "ROS2": "ros2"}

@@ -3,7 +3,7 @@
 Two forms of top function reach the logic (docs/accelerators.md, "HLS accelerators"):
 
 * scalar arguments, one per selected field: the core's port is named like the argument;
-* one message struct per port (`rfc.lower.hls_types`), inputs by value and outputs by pointer,
+* one message struct per port (`rfc.hls.c_types`), inputs by value and outputs by pointer,
   each followed by one ``hls::stream`` per string or primitive sequence of the port. The Vitis
   HLS run disaggregates each struct and completely partitions each of its arrays
   (`vitis_directives`), so that every scalar member becomes one port named
@@ -26,13 +26,13 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 from rfc.errors import RfcError
+from rfc.hls.c_types import message_struct
+from rfc.hls.signature import SCALAR_BITS, ArgumentKind, HlsArgument, read_top_function
 from rfc.ir.model import AcceleratorType, Block
 from rfc.lib.converters.buffer_sizes import Buffer
 from rfc.lib.converters.plan import plan
 from rfc.lib.converters.ports import ROOT_CHANNEL, Direction, Port, PortRole, stream_bytes
 from rfc.lib.converters.steps import ROOT, Payload, Plan
-from rfc.lower.hls_signature import SCALAR_BITS, ArgumentKind, HlsArgument, read_top_function
-from rfc.lower.hls_types import message_struct
 from rfc.messages.limits import Limits
 
 #: Bits of a stream's length in the core (``uint32_t``).
@@ -141,7 +141,7 @@ def core_ports(
     Args:
         accelerator: The accelerator type's name (for messages).
         top: The top function's name.
-        arguments: Its arguments (`rfc.lower.hls_signature.read_top_function`).
+        arguments: Its arguments (`rfc.hls.signature.read_top_function`).
         signatures: Per accelerator port, in the spec's order (inputs, then outputs), its
             message signature.
 
@@ -279,6 +279,8 @@ def _struct_ports(
     for name, struct in structs.items():
         argument = remaining.pop(0)
         want = struct.arguments()[0]
+        # The struct form's own check (C type and pointer), not the scalar form's (bits and
+        # direction): the two refusals name what each form gets wrong.
         if argument.ctype != struct.type_name or argument.output != struct.output:
             kind = "pointer to " if argument.output else ""
             raise RfcError(

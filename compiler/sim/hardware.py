@@ -4,7 +4,7 @@ The logic comes from a *top provider* — by default `rfc.lower.hardware.simulat
 whole-system generation — a function ``(design, directory) -> top`` whose result has ``top``
 (the entity), ``sources`` (VHDL in compile order) and ``bus_width``; the entity has the ports
 of the system contract (docs/runtime.md). The replay itself runs in the simulator
-(`rfc.runtime.cosim`); this module prepares its job, runs cocotb in a worker thread while
+(`rfc.sim.cosim`); this module prepares its job, runs cocotb in a worker thread while
 reporting progress, and reads the results back.
 """
 
@@ -16,7 +16,7 @@ import threading
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Protocol
+from typing import Protocol, TypedDict
 
 from rfc.errors import RfcError
 from rfc.ir.model import Design
@@ -35,7 +35,7 @@ DEFAULT_DRAIN_CYCLES = 1000
 class SimulationTop(Protocol):
     """The logic to simulate: its entity, its VHDL sources in compile order, its bus width.
 
-    A top may also name the blocks its ``busy`` port watches (``busy``, `rfc.runtime.busy`).
+    A top may also name the blocks its ``busy`` port watches (``busy``, `rfc.sim.busy`).
     """
 
     top: str
@@ -44,6 +44,28 @@ class SimulationTop(Protocol):
 
 
 TopProvider = Callable[[Design, Path], SimulationTop]
+
+
+class CosimJob(TypedDict):
+    """What the harness in the simulator (`rfc.sim.cosim`) reads: the replay and its files."""
+
+    spec: str
+    bag: str
+    topics: list[str]
+    topic_names: dict[str, str]
+    clock_mhz: float
+    policy: str
+    depth: int
+    screen: bool
+    drain_cycles: int
+    stall_cycles: int
+    seed: int
+    results: str
+    account: str
+    progress: str
+    stalled: str
+    busy: list[str]
+    warnings: str
 
 
 def load_top_provider(reference: str = DEFAULT_TOP_PROVIDER) -> TopProvider:
@@ -55,7 +77,7 @@ def load_top_provider(reference: str = DEFAULT_TOP_PROVIDER) -> TopProvider:
     """
     module_name, _, function_name = reference.partition(":")
     try:
-        provider = getattr(importlib.import_module(module_name), function_name)
+        provider: TopProvider = getattr(importlib.import_module(module_name), function_name)
     except (ImportError, AttributeError):
         if reference == DEFAULT_TOP_PROVIDER:
             raise RfcError(
@@ -116,7 +138,7 @@ def simulate_with_ghdl(
         CosimError: The simulation failed (a bug in rfc or in the logic).
         StallError: The logic stalled.
     """
-    job = {
+    job: CosimJob = {
         "spec": str(design.project.spec_file),
         "bag": str(bag),
         "topics": sorted(topic_names),
@@ -144,7 +166,7 @@ def simulate_with_ghdl(
             run_cocotb(
                 getattr(top, "verilog", ()) if simulator == "verilator" else top.sources,
                 top.top,
-                "rfc.runtime.cosim",
+                "rfc.sim.cosim",
                 workdir / "sim",
                 env={"RFC_SIM_JOB": str(job_file)},
                 seed=seed,

@@ -10,8 +10,8 @@ from rfc.ir.pass_through import pass_through_routes
 from rfc.lower.runtime_plan import DesignPlan
 from rfc.runtime.core import Runtime
 from rfc.runtime.loopback import PassThroughLogic
-from rfc.runtime.myhdl_sim import simulate_with_myhdl
 from rfc.runtime.replay import replay
+from rfc.sim.myhdl_sim import simulate_with_myhdl
 from tests.runtime.echo_top import echo_logic, route_table
 from tests.runtime.support import compiled, pose_messages
 

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from rfc.runtime.busy import BusyWatch
+from rfc.sim.busy import BusyWatch
 
 
 def test_busy_until_the_bits_fall():

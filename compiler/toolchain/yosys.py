@@ -4,7 +4,8 @@
 LUT mapping), counts its cells, times it with `sta` and keeps its boundary logic (the mapped
 cells between its ports and its first registers), all cached by the content of its file (a
 system's estimate sums its modules, so a rebuild or a sibling system that shares the
-accelerator maps only what changed); `estimate_modules` runs several at once, and
+accelerator maps only what changed; two builds that miss one module at once map it once);
+`estimate_modules` runs several at once, and
 `logic_timing` times a whole logic from them: each block's own path, and the paths that cross
 blocks from the modules' boundary logic (`crossing_timing`), without mapping or reading their
 insides again. `estimate_resources` and `estimate_timing` go through
@@ -14,6 +15,7 @@ GHDL's synthesis for designs that exist only in VHDL (a scheduler or converter o
 from __future__ import annotations
 
 import dataclasses
+import fcntl
 import hashlib
 import json
 import os
@@ -21,8 +23,9 @@ import shutil
 import subprocess
 import tempfile
 import threading
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from concurrent.futures import ThreadPoolExecutor
+from contextlib import contextmanager
 from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
@@ -142,6 +145,29 @@ def module_estimate(verilog: Path, top: str) -> ModuleEstimate:
     if entry.is_file() and netlist.is_file():
         return _read_entry(entry, netlist)
     entry.parent.mkdir(parents=True, exist_ok=True)
+    with _claimed(entry):
+        if entry.is_file() and netlist.is_file():  # mapped by whoever held it before us
+            return _read_entry(entry, netlist)
+        return _map_module(verilog, top, entry, netlist)
+
+
+@contextmanager
+def _claimed(entry: Path) -> Iterator[None]:
+    """Hold `entry`'s lock: of two processes (or threads) needing one module, one maps it.
+
+    Parallel builds and test workers sharing a cache would otherwise both map a module they
+    both miss (minutes for an accelerator); the second waits and reads the first's figures.
+    """
+    with entry.with_suffix(".lock").open("a") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        try:
+            yield
+        finally:
+            fcntl.flock(lock, fcntl.LOCK_UN)
+
+
+def _map_module(verilog: Path, top: str, entry: Path, netlist: Path) -> ModuleEstimate:
+    """Map, count and time `top` of `verilog`; publish its figures at `entry`, `netlist`."""
     with tempfile.TemporaryDirectory(prefix="rfc-synth-") as scratch:
         work = Path(scratch)
         boundary, report, log = work / f"{top}.boundary.v", work / "stat.json", work / "sta.log"

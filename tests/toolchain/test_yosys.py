@@ -1,0 +1,33 @@
+"""The module cache of `--estimate`: shared by parallel builds without mapping a module twice."""
+
+from __future__ import annotations
+
+from concurrent.futures import ThreadPoolExecutor
+
+from rfc.toolchain import yosys
+
+COUNTER = """
+module counter (input clk, output reg [7:0] count);
+  always @(posedge clk) count <= count + 8'd1;
+endmodule
+"""
+
+
+def test_two_builds_needing_one_module_at_once_map_it_once(tmp_path, monkeypatch):
+    monkeypatch.setenv("RFC_CACHE_DIR", str(tmp_path / "cache"))
+    source = tmp_path / "counter.v"
+    source.write_text(COUNTER)
+    scripts = []
+    run_yosys = yosys._run_yosys
+
+    def counted(script, what):
+        scripts.append(script)
+        run_yosys(script, what)
+
+    monkeypatch.setattr(yosys, "_run_yosys", counted)
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        first, second = pool.map(lambda _: yosys.module_estimate(source, "counter"), range(2))
+    assert len(scripts) == 1
+    assert first == second
+    assert first.resources.ff == 8
+    assert first.timing is not None

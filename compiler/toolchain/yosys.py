@@ -201,9 +201,17 @@ def _map_module(verilog: Path, top: str, entry: Path, netlist: Path) -> ModuleEs
 
 
 def estimate_modules(modules: Sequence[tuple[Path, str]]) -> list[ModuleEstimate]:
-    """`module_estimate` of each (file, module), `WORKERS` Yosys processes at a time."""
+    """`module_estimate` of each (file, module), `WORKERS` Yosys processes at a time.
+
+    The largest files start first: an accelerator's mapping takes minutes where the converters
+    take seconds, so the others fill the second worker around it instead of delaying its start.
+    """
     with ThreadPoolExecutor(max_workers=WORKERS) as pool:
-        return list(pool.map(lambda module: module_estimate(*module), modules))
+        started = {
+            module: pool.submit(module_estimate, *module)
+            for module in sorted(modules, key=lambda m: m[0].stat().st_size, reverse=True)
+        }
+        return [started[module].result() for module in modules]
 
 
 def crossing_timing(netlists: Sequence[Path], top_verilog: Path, top: str) -> TimingPath | None:

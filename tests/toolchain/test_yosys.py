@@ -31,3 +31,23 @@ def test_two_builds_needing_one_module_at_once_map_it_once(tmp_path, monkeypatch
     assert first == second
     assert first.resources.ff == 8
     assert first.timing is not None
+
+
+def test_the_largest_module_is_mapped_first_and_figures_come_back_in_the_order_asked(
+    tmp_path, monkeypatch
+):
+    files = []
+    for name, lines in (("small", 1), ("large", 40), ("medium", 8)):
+        path = tmp_path / f"{name}.v"
+        path.write_text("// padding\n" * lines + f"module {name} (); endmodule\n")
+        files.append((path, name))
+    started = []
+
+    def recorded(verilog, top):
+        started.append(top)
+        return top
+
+    monkeypatch.setattr(yosys, "module_estimate", recorded)
+    monkeypatch.setattr(yosys, "WORKERS", 1)
+    assert yosys.estimate_modules(files) == ["small", "large", "medium"]
+    assert started == ["large", "medium", "small"]

@@ -194,8 +194,10 @@ def _map_module(verilog: Path, top: str, entry: Path, netlist: Path) -> ModuleEs
         resources = _resources(report)
         timing = parse_sta(log.read_text())
         _publish(netlist, boundary.read_text())
-    value = {"resources": dataclasses.asdict(resources)}
-    value["timing"] = None if timing is None else dataclasses.asdict(timing)
+    value = {
+        "resources": dataclasses.asdict(resources),
+        "timing": None if timing is None else dataclasses.asdict(timing),
+    }
     _publish(entry, json.dumps(value))
     return ModuleEstimate(resources, timing, netlist)
 
@@ -369,8 +371,11 @@ def resources_of_verilog(verilog: Path | Sequence[Path], top: str, workdir: Path
 
 def _resources(report: Path) -> Resources:
     """The cells of Yosys' `stat -json` report."""
-    cells = json.loads(report.read_text())["design"]["num_cells_by_type"]
-    count = lambda names: sum(cells.get(n, 0) for n in names)  # noqa: E731
+    cells: dict[str, int] = json.loads(report.read_text())["design"]["num_cells_by_type"]
+
+    def count(names: Sequence[str]) -> int:
+        return sum(cells.get(name, 0) for name in names)
+
     return Resources(
         lut=count(_LUTS),
         ff=count(_FFS),

@@ -2,14 +2,14 @@
 
 `module_estimate` maps one module of rfc's own Verilog out of context with `-abc9` (delay-aware
 LUT mapping), counts its cells, times it with `sta` and keeps its boundary logic (the mapped
-cells between its ports and its first registers), all cached by the content of its file (a
-system's estimate sums its modules, so a rebuild or a sibling system that shares the
-accelerator maps only what changed; two builds that miss one module at once map it once);
-`estimate_modules` runs several at once, and
-`logic_timing` times a whole logic from them: each block's own path, and the paths that cross
-blocks from the modules' boundary logic (`crossing_timing`), without mapping or reading their
-insides again. `estimate_resources` and `estimate_timing` go through
-GHDL's synthesis for designs that exist only in VHDL (a scheduler or converter on its own).
+cells between its ports and its first registers), all cached by the content of its file, its
+module's name left out (a system's estimate sums its modules, so a rebuild or a sibling system
+that shares blocks maps only what changed; two builds that miss one module at once map it
+once); `estimate_modules` runs several at once, the largest first, and `logic_timing` times a
+whole logic from them: each block's own path, and the paths that cross blocks from the
+modules' boundary logic (`crossing_timing`), without mapping or reading their insides again.
+`estimate_resources` and `estimate_timing` go through GHDL's synthesis for designs that exist
+only in VHDL (a scheduler or converter on its own).
 """
 
 from __future__ import annotations
@@ -19,6 +19,7 @@ import fcntl
 import hashlib
 import json
 import os
+import re
 import shutil
 import subprocess
 import tempfile
@@ -131,24 +132,41 @@ def cache_directory() -> Path:
 def module_estimate(verilog: Path, top: str) -> ModuleEstimate:
     """Map one Verilog file to the 7-series with `-abc9`; count and time its module `top`.
 
-    The figures and the boundary logic are cached by the file's content, the module and
-    Yosys's version.
+    The figures and the boundary logic are cached by the file's content with the module's
+    name left out, and Yosys's version: the same block under another name (a slice, a busy
+    watch or a manager of a sibling system, named after its project) is mapped once.
 
     Raises:
         RuntimeError: Yosys is missing or fails.
     """
     digest = hashlib.sha256()
-    for part in (_FLOW, _yosys_version(), top, *canonical_lines(verilog.read_text())):
+    for part in (_FLOW, _yosys_version(), *canonical_lines(_renamed(verilog.read_text(), top))):
         digest.update(part.encode() + b"\n")
     entry = cache_directory() / f"{digest.hexdigest()}.json"
-    netlist = entry.with_suffix(".v")
-    if entry.is_file() and netlist.is_file():
-        return _read_entry(entry, netlist)
-    entry.parent.mkdir(parents=True, exist_ok=True)
-    with _claimed(entry):
-        if entry.is_file() and netlist.is_file():  # mapped by whoever held it before us
-            return _read_entry(entry, netlist)
-        return _map_module(verilog, top, entry, netlist)
+    anonymous = entry.with_suffix(".v")  # the boundary logic, its module named _ANONYMOUS
+    if not (entry.is_file() and anonymous.is_file()):
+        entry.parent.mkdir(parents=True, exist_ok=True)
+        with _claimed(entry):
+            if not (entry.is_file() and anonymous.is_file()):  # nobody mapped it meanwhile
+                _map_module(verilog, top, entry, anonymous)
+    return _read_entry(entry, _named(anonymous, top))
+
+
+#: The name a cached module goes by, whatever the name it was mapped under.
+_ANONYMOUS = "rfc_estimated_module"
+
+
+def _renamed(text: str, name: str, to: str = _ANONYMOUS) -> str:
+    """Verilog `text` with every occurrence of the identifier `name` made `to`."""
+    return re.sub(rf"(?<![\w$]){re.escape(name)}(?![\w$])", to, text)
+
+
+def _named(anonymous: Path, top: str) -> Path:
+    """The cached boundary logic `anonymous` as module `top` (written once, beside it)."""
+    named = anonymous.with_name(f"{anonymous.stem}.{top}.v")
+    if not named.is_file():
+        _publish(named, _renamed(anonymous.read_text(), _ANONYMOUS, top))
+    return named
 
 
 @contextmanager
@@ -166,8 +184,12 @@ def _claimed(entry: Path) -> Iterator[None]:
             fcntl.flock(lock, fcntl.LOCK_UN)
 
 
-def _map_module(verilog: Path, top: str, entry: Path, netlist: Path) -> ModuleEstimate:
-    """Map, count and time `top` of `verilog`; publish its figures at `entry`, `netlist`."""
+def _map_module(verilog: Path, top: str, entry: Path, anonymous: Path) -> None:
+    """Map, count and time `top` of `verilog`; publish its figures and boundary logic.
+
+    The figures go to `entry`, the boundary logic to `anonymous` with the module renamed
+    `_ANONYMOUS` (`_named` gives it back under any name).
+    """
     with tempfile.TemporaryDirectory(prefix="rfc-synth-") as scratch:
         work = Path(scratch)
         boundary, report, log = work / f"{top}.boundary.v", work / "stat.json", work / "sta.log"
@@ -193,13 +215,12 @@ def _map_module(verilog: Path, top: str, entry: Path, netlist: Path) -> ModuleEs
             _run_yosys(f"{mapping} -nobram -top {top}; {timing_and_boundary}", str(verilog))
         resources = _resources(report)
         timing = parse_sta(log.read_text())
-        _publish(netlist, boundary.read_text())
+        _publish(anonymous, _renamed(boundary.read_text(), top))
     value = {
         "resources": dataclasses.asdict(resources),
         "timing": None if timing is None else dataclasses.asdict(timing),
     }
     _publish(entry, json.dumps(value))
-    return ModuleEstimate(resources, timing, netlist)
 
 
 def estimate_modules(modules: Sequence[tuple[Path, str]]) -> list[ModuleEstimate]:

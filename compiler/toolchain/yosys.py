@@ -2,27 +2,31 @@
 
 `module_estimate` maps one module of rfc's own Verilog out of context with `-abc9` (delay-aware
 LUT mapping), counts its cells, times it with `sta` and keeps its boundary logic (the mapped
-cells between its ports and its first registers), all cached by the content of its file (a
-system's estimate sums its modules, so a rebuild or a sibling system that shares the
-accelerator maps only what changed); `estimate_modules` runs several at once, and
-`logic_timing` times a whole logic from them: each block's own path, and the paths that cross
-blocks from the modules' boundary logic (`crossing_timing`), without mapping or reading their
-insides again. `estimate_resources` and `estimate_timing` go through
-GHDL's synthesis for designs that exist only in VHDL (a scheduler or converter on its own).
+cells between its ports and its first registers), all cached by the content of its file, its
+module's name left out (a system's estimate sums its modules, so a rebuild or a sibling system
+that shares blocks maps only what changed; two builds that miss one module at once map it
+once); `estimate_modules` runs several at once, the largest first, and `logic_timing` times a
+whole logic from them: each block's own path, and the paths that cross blocks from the
+modules' boundary logic (`crossing_timing`), without mapping or reading their insides again.
+`estimate_resources` and `estimate_timing` go through GHDL's synthesis for designs that exist
+only in VHDL (a scheduler or converter on its own).
 """
 
 from __future__ import annotations
 
 import dataclasses
+import fcntl
 import hashlib
 import json
 import os
+import re
 import shutil
 import subprocess
 import tempfile
 import threading
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from concurrent.futures import ThreadPoolExecutor
+from contextlib import contextmanager
 from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
@@ -128,20 +132,64 @@ def cache_directory() -> Path:
 def module_estimate(verilog: Path, top: str) -> ModuleEstimate:
     """Map one Verilog file to the 7-series with `-abc9`; count and time its module `top`.
 
-    The figures and the boundary logic are cached by the file's content, the module and
-    Yosys's version.
+    The figures and the boundary logic are cached by the file's content with the module's
+    name left out, and Yosys's version: the same block under another name (a slice, a busy
+    watch or a manager of a sibling system, named after its project) is mapped once.
 
     Raises:
         RuntimeError: Yosys is missing or fails.
     """
     digest = hashlib.sha256()
-    for part in (_FLOW, _yosys_version(), top, *canonical_lines(verilog.read_text())):
+    for part in (_FLOW, _yosys_version(), *canonical_lines(_renamed(verilog.read_text(), top))):
         digest.update(part.encode() + b"\n")
     entry = cache_directory() / f"{digest.hexdigest()}.json"
-    netlist = entry.with_suffix(".v")
-    if entry.is_file() and netlist.is_file():
-        return _read_entry(entry, netlist)
-    entry.parent.mkdir(parents=True, exist_ok=True)
+    anonymous = entry.with_suffix(".v")  # the boundary logic, its module named _ANONYMOUS
+    if not (entry.is_file() and anonymous.is_file()):
+        entry.parent.mkdir(parents=True, exist_ok=True)
+        with _claimed(entry):
+            if not (entry.is_file() and anonymous.is_file()):  # nobody mapped it meanwhile
+                _map_module(verilog, top, entry, anonymous)
+    return _read_entry(entry, _named(anonymous, top))
+
+
+#: The name a cached module goes by, whatever the name it was mapped under.
+_ANONYMOUS = "rfc_estimated_module"
+
+
+def _renamed(text: str, name: str, to: str = _ANONYMOUS) -> str:
+    """Verilog `text` with every occurrence of the identifier `name` made `to`."""
+    return re.sub(rf"(?<![\w$]){re.escape(name)}(?![\w$])", to, text)
+
+
+def _named(anonymous: Path, top: str) -> Path:
+    """The cached boundary logic `anonymous` as module `top` (written once, beside it)."""
+    named = anonymous.with_name(f"{anonymous.stem}.{top}.v")
+    if not named.is_file():
+        _publish(named, _renamed(anonymous.read_text(), _ANONYMOUS, top))
+    return named
+
+
+@contextmanager
+def _claimed(entry: Path) -> Iterator[None]:
+    """Hold `entry`'s lock: of two processes (or threads) needing one module, one maps it.
+
+    Parallel builds and test workers sharing a cache would otherwise both map a module they
+    both miss (minutes for an accelerator); the second waits and reads the first's figures.
+    """
+    with entry.with_suffix(".lock").open("a") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        try:
+            yield
+        finally:
+            fcntl.flock(lock, fcntl.LOCK_UN)
+
+
+def _map_module(verilog: Path, top: str, entry: Path, anonymous: Path) -> None:
+    """Map, count and time `top` of `verilog`; publish its figures and boundary logic.
+
+    The figures go to `entry`, the boundary logic to `anonymous` with the module renamed
+    `_ANONYMOUS` (`_named` gives it back under any name).
+    """
     with tempfile.TemporaryDirectory(prefix="rfc-synth-") as scratch:
         work = Path(scratch)
         boundary, report, log = work / f"{top}.boundary.v", work / "stat.json", work / "sta.log"
@@ -167,17 +215,26 @@ def module_estimate(verilog: Path, top: str) -> ModuleEstimate:
             _run_yosys(f"{mapping} -nobram -top {top}; {timing_and_boundary}", str(verilog))
         resources = _resources(report)
         timing = parse_sta(log.read_text())
-        _publish(netlist, boundary.read_text())
-    value = {"resources": dataclasses.asdict(resources)}
-    value["timing"] = None if timing is None else dataclasses.asdict(timing)
+        _publish(anonymous, _renamed(boundary.read_text(), top))
+    value = {
+        "resources": dataclasses.asdict(resources),
+        "timing": None if timing is None else dataclasses.asdict(timing),
+    }
     _publish(entry, json.dumps(value))
-    return ModuleEstimate(resources, timing, netlist)
 
 
 def estimate_modules(modules: Sequence[tuple[Path, str]]) -> list[ModuleEstimate]:
-    """`module_estimate` of each (file, module), `WORKERS` Yosys processes at a time."""
+    """`module_estimate` of each (file, module), `WORKERS` Yosys processes at a time.
+
+    The largest files start first: an accelerator's mapping takes minutes where the converters
+    take seconds, so the others fill the second worker around it instead of delaying its start.
+    """
     with ThreadPoolExecutor(max_workers=WORKERS) as pool:
-        return list(pool.map(lambda module: module_estimate(*module), modules))
+        started = {
+            module: pool.submit(module_estimate, *module)
+            for module in sorted(modules, key=lambda m: m[0].stat().st_size, reverse=True)
+        }
+        return [started[module].result() for module in modules]
 
 
 def crossing_timing(netlists: Sequence[Path], top_verilog: Path, top: str) -> TimingPath | None:
@@ -335,8 +392,11 @@ def resources_of_verilog(verilog: Path | Sequence[Path], top: str, workdir: Path
 
 def _resources(report: Path) -> Resources:
     """The cells of Yosys' `stat -json` report."""
-    cells = json.loads(report.read_text())["design"]["num_cells_by_type"]
-    count = lambda names: sum(cells.get(n, 0) for n in names)  # noqa: E731
+    cells: dict[str, int] = json.loads(report.read_text())["design"]["num_cells_by_type"]
+
+    def count(names: Sequence[str]) -> int:
+        return sum(cells.get(name, 0) for name in names)
+
     return Resources(
         lut=count(_LUTS),
         ff=count(_FFS),

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import shutil
 import subprocess
+from pathlib import Path
 
 import pytest
 
@@ -62,9 +63,15 @@ endmodule
 PAIR_INSTANCES = {"make": "producer", "take": "consumer"}
 
 
+@pytest.fixture(scope="module")
+def module_cache(tmp_path_factory):
+    """One cache for the module's tests: a block two tests map is mapped once, as in a build."""
+    return tmp_path_factory.mktemp("cache")
+
+
 @pytest.fixture(autouse=True)
-def private_cache(tmp_path, monkeypatch):
-    monkeypatch.setenv("RFC_CACHE_DIR", str(tmp_path / "cache"))
+def shared_cache(module_cache, monkeypatch):
+    monkeypatch.setenv("RFC_CACHE_DIR", str(module_cache))
 
 
 def write_adder(folder, bits):
@@ -113,9 +120,26 @@ def write_pair(folder, producer=PRODUCER):
     return parts, files
 
 
-def whole_netlist(source, top, folder):
-    """`top` mapped as `module_estimate` maps it, every cell kept: the flattened oracle's input."""
-    mapped = folder / f"{top}.whole.v"
+@pytest.fixture(scope="module")
+def whole_netlist(tmp_path_factory):
+    """`whole_netlist(source, top)`: `top` mapped as `module_estimate` maps it, every cell kept.
+
+    The flattened oracle's input; a block the tests share (the consumer) is mapped once.
+    """
+    folder = tmp_path_factory.mktemp("whole")
+    mapped: dict[str, Path] = {}
+
+    def netlist(source: Path, top: str) -> Path:
+        text = source.read_text()
+        if text not in mapped:
+            mapped[text] = map_whole(source, top, folder / f"{top}{len(mapped)}.whole.v")
+        return mapped[text]
+
+    return netlist
+
+
+def map_whole(source, top, mapped):
+    """Map `source` with `module_estimate`'s mapping into `mapped`, every cell kept."""
     script = (
         f"read_verilog {source}; synth_xilinx -family xc7 -noiopad -abc9 -flatten -top {top}; "
         f"rename -wire t:FD*; write_verilog -noattr {mapped}"  # registers named as rfc names them
@@ -136,9 +160,11 @@ def test_the_whole_design_finds_the_path_that_crosses_two_blocks(tmp_path):
 
 
 @pytest.mark.parametrize("producer", [PRODUCER, REGISTERED_PRODUCER], ids=["across", "inside"])
-def test_the_boundary_logic_times_a_logic_as_its_whole_flattened_netlist_does(tmp_path, producer):
+def test_the_boundary_logic_times_a_logic_as_its_whole_flattened_netlist_does(
+    tmp_path, producer, whole_netlist
+):
     parts, files = write_pair(tmp_path, producer)
-    netlists = [whole_netlist(files[m], m, tmp_path) for m in ("producer", "consumer")]
+    netlists = [whole_netlist(files[m], m) for m in ("producer", "consumer")]
     flattened = crossing_timing(netlists, files["pair"], "pair")
     assert flattened is not None
     assert logic_timing(parts, files["pair"], "pair") == flattened

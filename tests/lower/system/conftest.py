@@ -12,7 +12,8 @@ def synthesis_cache(tmp_path_factory):
     """One cache of module figures for every `--estimate` of the session, shared by its workers.
 
     Each module is mapped once, by whichever test builds it first (the quaternion accelerator
-    is shared by several); the cache is written whole or not at all, so workers may share it.
+    is shared by several; a worker that needs a module another is mapping waits for it); the
+    cache is written whole or not at all, so workers may share it.
     """
     root = tmp_path_factory.getbasetemp()
     if os.environ.get("PYTEST_XDIST_WORKER"):

@@ -1,0 +1,96 @@
+"""The module cache of `--estimate`: shared by parallel builds without mapping a module twice."""
+
+from __future__ import annotations
+
+from concurrent.futures import ThreadPoolExecutor
+
+from rfc.toolchain import crossing_timing, yosys
+
+COUNTER = """
+module counter (input clk, output reg [7:0] count);
+  always @(posedge clk) count <= count + 8'd1;
+endmodule
+"""
+#: A counter under a name of its own; two of them, the second stepped by the first's top bit.
+NAMED_COUNTER = """
+// {name}: a counter
+module {name} (input clk, input step, output reg [7:0] count);
+  always @(posedge clk) if (step) count <= count + 8'd1;
+endmodule
+"""
+TWO_COUNTERS = """
+module two (input clk, output [7:0] total);
+  wire [7:0] low;
+  first_counter a (.clk(clk), .step(1'b1), .count(low));
+  second_counter b (.clk(clk), .step(low[7]), .count(total));
+endmodule
+"""
+
+
+def test_two_builds_needing_one_module_at_once_map_it_once(tmp_path, monkeypatch):
+    monkeypatch.setenv("RFC_CACHE_DIR", str(tmp_path / "cache"))
+    source = tmp_path / "counter.v"
+    source.write_text(COUNTER)
+    scripts = []
+    run_yosys = yosys._run_yosys
+
+    def counted(script, what):
+        scripts.append(script)
+        run_yosys(script, what)
+
+    monkeypatch.setattr(yosys, "_run_yosys", counted)
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        first, second = pool.map(lambda _: yosys.module_estimate(source, "counter"), range(2))
+    assert len(scripts) == 1
+    assert first == second
+    assert first.resources.ff == 8
+    assert first.timing is not None
+
+
+def test_the_largest_module_is_mapped_first_and_figures_come_back_in_the_order_asked(
+    tmp_path, monkeypatch
+):
+    files = []
+    for name, lines in (("small", 1), ("large", 40), ("medium", 8)):
+        path = tmp_path / f"{name}.v"
+        path.write_text("// padding\n" * lines + f"module {name} (); endmodule\n")
+        files.append((path, name))
+    started = []
+
+    def recorded(verilog, top):
+        started.append(top)
+        return top
+
+    monkeypatch.setattr(yosys, "module_estimate", recorded)
+    monkeypatch.setattr(yosys, "WORKERS", 1)
+    assert yosys.estimate_modules(files) == ["small", "large", "medium"]
+    assert started == ["large", "medium", "small"]
+
+
+def test_a_block_under_another_name_is_mapped_once_and_named_as_each_instance_wants(
+    tmp_path, monkeypatch
+):
+    monkeypatch.setenv("RFC_CACHE_DIR", str(tmp_path / "cache"))
+    files = {}
+    for name in ("first_counter", "second_counter"):
+        files[name] = tmp_path / f"{name}.v"
+        files[name].write_text(NAMED_COUNTER.format(name=name))
+    scripts = []
+    run_yosys = yosys._run_yosys
+
+    def counted(script, what):
+        scripts.append(script)
+        run_yosys(script, what)
+
+    monkeypatch.setattr(yosys, "_run_yosys", counted)
+    first, second = (yosys.module_estimate(files[n], n) for n in files)
+    assert len(scripts) == 1
+    assert (first.resources, first.timing) == (second.resources, second.timing)
+    assert "module first_counter" in first.netlist.read_text()
+    assert "module second_counter" in second.netlist.read_text()
+    # the top level finds each under its own name: the path from a's count into b's enable
+    top = tmp_path / "two.v"
+    top.write_text(TWO_COUNTERS)
+    across = crossing_timing([first.netlist, second.netlist], top, "two")
+    assert across is not None
+    assert (across.start_cell, across.end_cell) == ("a", "b")

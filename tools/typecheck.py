@@ -1,10 +1,10 @@
-"""mypy --strict on rfc's typed modules ([tool.mypy] of pyproject.toml), reporting source paths.
+"""mypy --strict on the whole package ([tool.mypy] of pyproject.toml), reporting source paths.
 
 mypy reads the package from the tree `package_tree.py` lays out (the editable install's import
 hook is invisible to it); its report names the files you edit. Exit status: mypy's.
 
-Usage: .venv/bin/python tools/typecheck.py            the typed modules (the lint step runs this)
-       .venv/bin/python tools/typecheck.py -p rfc     anything else mypy accepts, e.g. everything
+Usage: .venv/bin/python tools/typecheck.py            the package (the lint step runs this)
+       .venv/bin/python tools/typecheck.py -m rfc.lib.slice   anything else mypy accepts
 """
 
 from __future__ import annotations

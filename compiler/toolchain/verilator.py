@@ -136,7 +136,7 @@ def build_stream_engine(
     """Compile the stream engine around the Verilog `top` (cached by content), return it.
 
     Args:
-        testbench: The engine's C++ source (`rfc.runtime.stream_engine`).
+        testbench: The engine's C++ source (`rfc.sim.stream_engine`).
         sources: Verilog files of the logic in compile order.
         top: The system's top module (the ports of the system contract).
         lanes: Bytes per beat of the DMA streams.

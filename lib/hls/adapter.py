@@ -1,12 +1,12 @@
 """The ap_ctrl wrapper: runs a Vitis HLS core once per message and holds its results.
 
 A core made with ``ap_ctrl_hs`` on its function, ``ap_none`` on its scalar inputs, ``ap_vld``
-on its pointer outputs and ``ap_fifo`` on its streams (`rfc.lower.hls_ports`) reads its fixed
+on its pointer outputs and ``ap_fifo`` on its streams (`rfc.hls.ports`) reads its fixed
 inputs straight from the subscribers' registered fields. The wrapper starts it when every input
 port is ready to be read (``ap_start`` held until ``ap_ready``): its message is valid, or the
 first beat of its last stream has come — the subscriber sends a stream while the frame arrives
 and raises the message's valid only at its end, and every field the core reads comes before a
-port's last stream (`rfc.lower.hls_ports` refuses other ports). A port's earlier streams are
+port's last stream (`rfc.hls.ports` refuses other ports). A port's earlier streams are
 held whole in FIFOs (`rfc.lib.converters.fifo`), so the subscriber can go on to the last one
 before the core runs. Stream beats are handed to the core
 element by element and its elements gathered into beats (`rfc.lib.hls.streams`); input lengths

@@ -119,7 +119,13 @@ assert MULTIPLY_PIPELINE + 2 <= MULTIPLY_CYCLES - 1
 #: the roll and yaw CORDICs' inputs are rounded from the sums (they are registered twice:
 #: rounded, then offset by the unit), two CORDIC passes (roll and yaw together, then pitch),
 #: each with a start and a capture cycle, and the angles' conversion to float64.
-LATENCY = MULTIPLY_CYCLES + MULTIPLY_PIPELINE + 1 + 2 * (CORDIC.latency + 2) + FIXED_TO_FLOAT_STAGES
+LATENCY = (
+    MULTIPLY_CYCLES
+    + MULTIPLY_PIPELINE
+    + 1
+    + 2 * (CORDIC.iterative_latency + 2)
+    + FIXED_TO_FLOAT_STAGES
+)
 #: One quaternion is in flight: after LATENCY cycles the result is offered for at least one
 #: cycle; the core sees the next quaternion on the cycle after the result was taken and takes
 #: it once its components are through the float64 → fixed conversion.
@@ -181,8 +187,8 @@ def _signed(bits: int) -> Signal:
 def quat_to_euler(clk, rst, x, y, z, w, in_valid, in_ready, roll, pitch, yaw, out_valid, out_ready):
     """Quaternion (x, y, z, w) → Euler angles (roll, pitch, yaw), float64 in and out.
 
-    Latency `LATENCY` (106) cycles from the input handshake to `out_valid`, the same for every
-    input; one quaternion in flight, so the initiation interval is `INITIATION_INTERVAL` (113)
+    Latency `LATENCY` (186) cycles from the input handshake to `out_valid`, the same for every
+    input; one quaternion in flight, so the initiation interval is `INITIATION_INTERVAL` (193)
     cycles when results are taken at once. The float64 ↔ fixed conversions are pipelines of
     short stages (`rfc.lib.fixed.pipeline`), so that no path runs through a whole conversion:
     the core takes a quaternion (`in_ready`) only once its components are through them, so

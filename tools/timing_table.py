@@ -8,6 +8,8 @@ gives it, which is the key `rfc check` looks up. Combinational blocks are timed 
 input and an output register. Prints a Markdown table (docs/arithmetic.md).
 
 Usage: .venv/bin/python tools/timing_table.py [--only TEXT] [--print]
+
+--only matches the key `rfc check` names a block by, e.g. ``cordic_vectoring (iterative``.
 """
 
 from __future__ import annotations
@@ -206,12 +208,17 @@ def cases() -> list[Case]:
     return found
 
 
-def measure(case: Case, work: Path) -> dict[str, Any]:
-    """Convert, map and time one case; its row of the table."""
+def elaborate(case: Case) -> tuple[Any, BlockKey]:
+    """One case's top-level instance and the key `rfc check` looks its timing up by."""
     start_new_design()
     top = flat_top(case.function, case.order, {}, case.extra)
     instance = top(*(case.ports[n] for n in case.order))
     (key,) = blocks_in(instance)
+    return instance, key
+
+
+def measure(instance: Any, key: BlockKey, work: Path) -> dict[str, Any]:
+    """Convert, map and time one case; its row of the table."""
     name = "timed"
     files = convert_myhdl(instance, name, work / f"{len(list(work.iterdir()))}")
     estimate = module_estimate(files[-1], name)
@@ -246,7 +253,11 @@ def markdown(rows: list[dict[str, Any]]) -> str:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--only", help="measure only blocks whose name contains this")
+    parser.add_argument(
+        "--only",
+        help="measure only blocks whose key (as rfc check names it) contains this, "
+        "e.g. 'cordic_vectoring (iterative'",
+    )
     parser.add_argument("--print", action="store_true", help="print the stored table only")
     args = parser.parse_args()
     if args.print:
@@ -260,9 +271,10 @@ def main() -> None:
     kept = {BlockKey(r["block"], r["variant"], r["parameters"]): r for r in stored}
     with tempfile.TemporaryDirectory(prefix="rfc-timing-table-") as scratch:
         for case in cases():
-            if args.only and args.only not in case.function.func.__name__:
+            instance, key = elaborate(case)
+            if args.only and args.only not in str(key):
                 continue
-            row = measure(case, Path(scratch))
+            row = measure(instance, key, Path(scratch))
             kept[BlockKey(row["block"], row["variant"], row["parameters"])] = row
             print(markdown([row]).splitlines()[-1], flush=True)
             rows = [kept[key] for key in sorted(kept)]  # kept whole after every block

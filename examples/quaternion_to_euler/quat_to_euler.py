@@ -7,11 +7,12 @@ Point x = roll, y = pitch, z = yaw: intrinsic Z-Y-X angles by the usual formulas
     yaw   = atan2(2(wz + xy), 1 - 2(y² + z²))
 
 The core works in fixed point. The four components become Q2.53 (`COMPONENT`); one multiplier,
-shared over ten cycles, forms the nine products exactly (106 fraction bits) and sums them into
-the arguments of the two atan2s and into sin(pitch). Two iterative CORDICs in vectoring mode
-give roll and yaw, and the lengths of their vectors, each cos(pitch) for a unit quaternion; the
-roll CORDIC then gives pitch = atan2(sin(pitch), cos(pitch)) from their mean, which stays
-accurate near ±π/2 where an arcsine does not. Angles are Q3.60 radians turned into float64.
+shared over twelve cycles, forms the nine products exactly (106 fraction bits) and sums them,
+a third of each sum's bits per cycle, into the arguments of the two atan2s and into
+sin(pitch). Two iterative CORDICs in vectoring mode give roll and yaw, and the lengths of their
+vectors, each cos(pitch) for a unit quaternion; the roll CORDIC then gives
+pitch = atan2(sin(pitch), cos(pitch)) from their mean, which stays accurate near ±π/2 where an
+arcsine does not. Angles are Q3.60 radians turned into float64.
 
 Three functions describe the same mapping: `quat_to_euler` (the hardware), `reference` (the same
 integer steps in Python, bit for bit) and `numpy_reference` (the double-precision formulas).
@@ -20,6 +21,7 @@ integer steps in Python, bit for bit) and `numpy_reference` (the double-precisio
 from __future__ import annotations
 
 from dataclasses import dataclass
+from itertools import pairwise
 
 import numpy as np
 from myhdl import Signal, always_comb, always_seq, block, enum, intbv
@@ -106,20 +108,31 @@ HALF_GAIN = ITERATIVE.half_gain
 #: path runs through a wide multiply and its sum at once.
 MULTIPLY_PIPELINE = 1 + exact_multiply_stages(COMPONENT.width, COMPONENT.width)
 #: Products issued one per cycle, by their operands: components x, y, z, w, then sin(pitch) and
-#: gain/2. wy and zx come first, so that sin(pitch) is summed when the tenth product, its
-#: scaling, needs it. The tables run on past the tenth entry (the step counter does; unused).
+#: gain/2. wy and zx come first, so that sin(pitch) is summed when the twelfth product, its
+#: scaling, needs it (the two issued before it are not used). The tables run on past the tenth
+#: entry (the step counter does; unused).
 X, Y, Z, W, SIN, GAIN = range(6)
-MULTIPLY_CYCLES = 10
+MULTIPLY_CYCLES = 12
+#: Cycles after a product is summed until its sum is complete: `split_accumulator` adds a
+#: third of the sum's bits per cycle.
+ACCUMULATE_CYCLES = 3
 _STEPS = MULTIPLY_CYCLES + MULTIPLY_PIPELINE + 1
 FIRST_OPERANDS = (W, Z, W, Y, X, Y, Z, W, X) + (SIN,) * (_STEPS - 9)
 SECOND_OPERANDS = (Y, X, X, Z, X, Y, Z, Z, Y) + (GAIN,) * (_STEPS - 9)
-# sin(pitch), summed from the first two products, must be in its register when issued (step 9)
-assert MULTIPLY_PIPELINE + 2 <= MULTIPLY_CYCLES - 1
+# sin(pitch), summed from the first two products, must be in its register when issued (step
+# MULTIPLY_CYCLES - 1): product 1 is summed at step MULTIPLY_PIPELINE + 1
+assert MULTIPLY_PIPELINE + 1 + ACCUMULATE_CYCLES <= MULTIPLY_CYCLES - 1
 #: Cycles from the input handshake until `out_valid` is high: the products, a cycle in which
 #: the roll and yaw CORDICs' inputs are rounded from the sums (they are registered twice:
 #: rounded, then offset by the unit), two CORDIC passes (roll and yaw together, then pitch),
 #: each with a start and a capture cycle, and the angles' conversion to float64.
-LATENCY = MULTIPLY_CYCLES + MULTIPLY_PIPELINE + 1 + 2 * (CORDIC.latency + 2) + FIXED_TO_FLOAT_STAGES
+LATENCY = (
+    MULTIPLY_CYCLES
+    + MULTIPLY_PIPELINE
+    + 1
+    + 2 * (CORDIC.iterative_latency + 2)
+    + FIXED_TO_FLOAT_STAGES
+)
 #: One quaternion is in flight: after LATENCY cycles the result is offered for at least one
 #: cycle; the core sees the next quaternion on the cycle after the result was taken and takes
 #: it once its components are through the float64 → fixed conversion.
@@ -181,8 +194,8 @@ def _signed(bits: int) -> Signal:
 def quat_to_euler(clk, rst, x, y, z, w, in_valid, in_ready, roll, pitch, yaw, out_valid, out_ready):
     """Quaternion (x, y, z, w) → Euler angles (roll, pitch, yaw), float64 in and out.
 
-    Latency `LATENCY` (106) cycles from the input handshake to `out_valid`, the same for every
-    input; one quaternion in flight, so the initiation interval is `INITIATION_INTERVAL` (113)
+    Latency `LATENCY` (188) cycles from the input handshake to `out_valid`, the same for every
+    input; one quaternion in flight, so the initiation interval is `INITIATION_INTERVAL` (195)
     cycles when results are taken at once. The float64 ↔ fixed conversions are pipelines of
     short stages (`rfc.lib.fixed.pipeline`), so that no path runs through a whole conversion:
     the core takes a quaternion (`in_ready`) only once its components are through them, so
@@ -240,6 +253,11 @@ def quat_to_euler(clk, rst, x, y, z, w, in_valid, in_ready, roll, pitch, yaw, ou
     operand_b = COMPONENT.signal()
     product = _signed(2 * COMPONENT.width)
     sum_sin, sum_roll_b, sum_roll_a, sum_yaw_a, sum_yaw_b = (_signed(SUM_WIDTH) for _ in range(5))
+    clear_sums = Signal(bool(0))
+    add_sin, subtract_sin, add_roll_b, add_roll_a, add_yaw_a, add_yaw_b = (
+        Signal(bool(0)) for _ in range(6)
+    )
+    never = Signal(bool(0))
     scaled_sin = _signed(2 * COMPONENT.width)
     sin_pitch = COMPONENT.signal()
     first, second = Signal(intbv(0, min=0, max=6)), Signal(intbv(0, min=0, max=6))
@@ -302,6 +320,28 @@ def quat_to_euler(clk, rst, x, y, z, w, in_valid, in_ready, roll, pitch, yaw, ou
     last_accumulate = MULTIPLY_CYCLES + MULTIPLY_PIPELINE - 1
     p = MULTIPLY_PIPELINE
     multiply = exact_multiply(clk, rst, always_on, operand_a, operand_b, product)
+    accumulators = [
+        split_accumulator(clk, rst, clear_sums, add, subtract, product, total)
+        for add, subtract, total in (
+            (add_sin, subtract_sin, sum_sin),
+            (add_roll_b, never, sum_roll_b),
+            (add_roll_a, never, sum_roll_a),
+            (add_yaw_a, never, sum_yaw_a),
+            (add_yaw_b, never, sum_yaw_b),
+        )
+    ]
+
+    @always_comb
+    def accumulate():
+        # Product k was issued at step k and is summed at step k + MULTIPLY_PIPELINE (p).
+        summing = state == state_t.PRODUCTS
+        clear_sums.next = state == state_t.CONVERT and waited == converted
+        add_sin.next = summing and step == p
+        subtract_sin.next = summing and step == p + 1
+        add_roll_b.next = summing and (step == p + 2 or step == p + 3)
+        add_roll_a.next = summing and (step == p + 4 or step == p + 5)
+        add_yaw_a.next = summing and (step == p + 5 or step == p + 6)
+        add_yaw_b.next = summing and (step == p + 7 or step == p + 8)
 
     @always_comb
     def operand_indices():
@@ -369,31 +409,11 @@ def quat_to_euler(clk, rst, x, y, z, w, in_valid, in_ready, roll, pitch, yaw, ou
                 qz.next = cz
                 qw.next = cw
                 bad_input.next = out_of_range
-                sum_sin.next = 0
-                sum_roll_b.next = 0
-                sum_roll_a.next = 0
-                sum_yaw_a.next = 0
-                sum_yaw_b.next = 0
                 step.next = 0
                 state.next = state_t.PRODUCTS
         elif state == state_t.PRODUCTS:
-            # Product k was issued at step k and is summed at step k + MULTIPLY_PIPELINE (p).
-            if step == p:
-                sum_sin.next = sum_sin + product
-            elif step == p + 1:
-                sum_sin.next = sum_sin - product
-            elif step == p + 2 or step == p + 3:
-                sum_roll_b.next = sum_roll_b + product
-            elif step == p + 4:
-                sum_roll_a.next = sum_roll_a + product
-            elif step == p + 5:
-                sum_roll_a.next = sum_roll_a + product
-                sum_yaw_a.next = sum_yaw_a + product
-            elif step == p + 6:
-                sum_yaw_a.next = sum_yaw_a + product
-            elif step == p + 7 or step == p + 8:
-                sum_yaw_b.next = sum_yaw_b + product
-            elif step == last_accumulate:
+            # The sums are `accumulate`'s; the last product, sin(pitch)·gain/2, is kept whole.
+            if step == last_accumulate:
                 scaled_sin.next = product
                 state.next = state_t.ROUND
             step.next = step + 1
@@ -449,10 +469,137 @@ def quat_to_euler(clk, rst, x, y, z, w, in_valid, in_ready, roll, pitch, yaw, ou
         cordic_inputs,
         operands_in,
         multiply,
+        accumulators,
+        accumulate,
         round_sums,
         control,
         outputs,
     )
+
+
+@block
+def split_accumulator(clk, rst, clear, add, subtract, product, total):
+    """`total` plus or minus the signed `product`, a part of the sum per cycle, low part first.
+
+    A 111-bit sum and its add-or-subtract in one cycle were the iterative core's critical path
+    (5.37 ns of cells); here each cycle holds one part's carry chain, the part's carry
+    registered for the next part on the next cycle. `total` is complete `ACCUMULATE_CYCLES`
+    cycles after the cycle `add` or `subtract` is high; a sum may be added to on successive
+    cycles. `clear` sets it to 0. Subtraction adds the complement plus 1.
+    """
+    width = len(total)
+    bounds = [width * k // ACCUMULATE_CYCLES for k in range(ACCUMULATE_CYCLES + 1)]
+    operand = Signal(intbv(0)[width:])
+    first_carry = Signal(intbv(0)[1:])
+    enable = Signal(bool(0))
+    prepare = accumulator_operand(product, add, subtract, operand, first_carry, enable)
+    values = [Signal(intbv(0)[high - low :]) for low, high in pairwise(bounds)]
+    carries = [first_carry, *(Signal(intbv(0)[1:]) for _ in values)]
+    parts = []
+    for k, (low, high) in enumerate(pairwise(bounds)):
+        addend, enabled = Signal(intbv(0)[high - low :]), Signal(bool(0))
+        parts.append(delayed_by(clk, rst, operand(high, low), addend, k))
+        parts.append(delayed_by(clk, rst, enable, enabled, k))
+        parts.append(
+            accumulator_part(clk, rst, clear, enabled, addend, carries[k], carries[k + 1],
+                             values[k])
+        )  # fmt: skip
+    join = join_parts(values, total)
+    return prepare, parts, join
+
+
+@block
+def accumulator_operand(product, add, subtract, operand, first_carry, enable):
+    """`product` sign-extended to the sum's width, complemented to subtract (combinational)."""
+    width = len(operand)
+    product_bits = len(product)
+
+    @always_comb
+    def extend():
+        extended = intbv(0)[width:]
+        extended[product_bits:] = product[product_bits:]
+        for i in range(product_bits, width):
+            extended[i] = product[product_bits - 1]
+        if subtract:
+            operand.next = ~extended
+            first_carry.next = 1
+        else:
+            operand.next = extended
+            first_carry.next = 0
+        enable.next = add or subtract
+
+    return extend
+
+
+@block
+def delayed_by(clk, rst, source, delayed, cycles):
+    """`source` registered `cycles` times (0: a wire)."""
+    if cycles == 0:
+
+        @always_comb
+        def wire():
+            delayed.next = source
+
+        return wire
+    chain = [source, *(Signal(delayed.val) for _ in range(cycles - 1)), delayed]
+    return [register(clk, rst, before, after) for before, after in pairwise(chain)]
+
+
+@block
+def register(clk, rst, before, after):
+    """One register."""
+
+    @always_seq(clk.posedge, reset=rst)
+    def hold():
+        after.next = before
+
+    return hold
+
+
+@block
+def accumulator_part(clk, rst, clear, enable, addend, carry_in, carry_out, value):
+    """One part of a split sum: ``value + addend + carry_in`` on the cycles `enable` is high.
+
+    The carry enters as a low bit below both operands (1 beside `value`, `carry_in` beside
+    `addend`), so that the sum is one carry chain: Yosys maps a three-operand sum as two.
+    """
+    width = len(value)
+
+    @always_seq(clk.posedge, reset=rst)
+    def add():
+        left = intbv(0)[width + 1 :]
+        right = intbv(0)[width + 1 :]
+        part_sum = intbv(0)[width + 2 :]
+        if clear:
+            value.next = 0
+        elif enable:
+            left[width + 1 : 1] = value
+            left[0] = 1
+            right[width + 1 : 1] = addend
+            right[1:] = carry_in
+            part_sum[:] = left + right
+            value.next = part_sum[width + 1 : 1]
+            carry_out.next = part_sum[width + 2 : width + 1]
+
+    return add
+
+
+@block
+def join_parts(values, total):
+    """The three parts of a split sum side by side, low part first, as one signed value."""
+    width = len(total)
+    low, middle, high = values
+    low_bits, middle_bits = len(low), len(middle)
+
+    @always_comb
+    def join():
+        whole = intbv(0)[width:]
+        whole[low_bits:] = low
+        whole[low_bits + middle_bits : low_bits] = middle
+        whole[width : low_bits + middle_bits] = high
+        total.next = whole.signed()
+
+    return join
 
 
 @block

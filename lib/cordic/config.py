@@ -86,9 +86,26 @@ class CordicConfig:
         return self.width + 1
 
     @property
-    def latency(self) -> int:
-        """Cycles from the input handshake to valid output (both implementations)."""
+    def pipelined_latency(self) -> int:
+        """Cycles from the input handshake to valid output of the pipelined block (a stage each)."""
         return self.iterations
+
+    @property
+    def iterative_latency(self) -> int:
+        """Cycles from the input handshake to valid output of the iterative block.
+
+        Each micro-rotation takes two cycles (shift, then add), so that no path runs through a
+        barrel shifter and a wide adder at once.
+        """
+        return 2 * self.iterations
+
+    @property
+    def iterative_interval(self) -> int:
+        """Cycles between inputs the iterative block takes back to back.
+
+        Its latency, then a cycle offering the result and an idle one before the next input.
+        """
+        return self.iterative_latency + 2
 
     @cached_property
     def atan_table(self) -> tuple[int, ...]:

@@ -1,11 +1,14 @@
-"""MyHDL vectoring CORDIC blocks, iterative (one rotation per cycle) or pipelined (one per stage).
+"""MyHDL vectoring CORDIC blocks: iterative (a rotation in two cycles) or pipelined (a stage each).
 
-Both have the same ports, the same latency (`CordicConfig.latency` cycles from the input
-handshake to `out_valid`) and the bits of `rfc.lib.cordic.model.vectoring`. The iterative block
-takes one input at a time (initiation interval latency + 2, about four adders and two barrel
-shifters of area); the pipelined one takes an input every cycle (one stage of three adders per
-iteration, the stages of `rfc.lib.cordic.stage`); `cordic_pipeline` is its datapath alone, for
-larger pipelines. Outputs stay put while `out_valid` is high and `out_ready` low.
+Both have the same ports and the bits of `rfc.lib.cordic.model.vectoring`. The iterative block
+takes one input at a time: a micro-rotation registers the shifted operands on one cycle and adds
+them on the next, so that no path runs through a barrel shifter and a wide adder at once
+(`CordicConfig.iterative_latency` cycles from the input handshake to `out_valid`, initiation
+interval `CordicConfig.iterative_interval`; about four adders, two barrel shifters and three
+registers of area). The pipelined one takes an input every cycle (one stage of three adders per
+iteration, the stages of `rfc.lib.cordic.stage`; latency `CordicConfig.pipelined_latency`);
+`cordic_pipeline` is its datapath alone, for larger pipelines. Outputs stay put while
+`out_valid` is high and `out_ready` low.
 
 Wide constants reach VHDL only as ROM contents: MyHDL writes integers in expressions as VHDL
 integers, which stop at 32 bits.
@@ -17,7 +20,7 @@ from myhdl import Signal, always_comb, always_seq, block, intbv
 
 from rfc.lib.arith.pipeline import stall_control
 from rfc.lib.cordic.config import CordicConfig
-from rfc.lib.cordic.stage import micro_rotation, rotation
+from rfc.lib.cordic.stage import micro_rotation
 from rfc.lib.types import Instances, SignalLike
 
 
@@ -74,35 +77,55 @@ def cordic_iterative(clk: SignalLike, rst: SignalLike, in_valid: SignalLike,
                      in_ready: SignalLike, x: SignalLike, y: SignalLike, out_valid: SignalLike,
                      out_ready: SignalLike, angle: SignalLike, magnitude: SignalLike,
                      config: CordicConfig) -> Instances:  # fmt: skip
-    """One micro-rotation per cycle through variable shifts; ports as `cordic_vectoring`."""
+    """A micro-rotation every two cycles through variable shifts; ports as `cordic_vectoring`.
+
+    On the first cycle of a step the shifted operands ``x >> i``, ``y >> i`` and the turn
+    ``atan(2**-i)`` are registered; on the second they are added. The sign of y, which picks
+    the direction, is read from its register on the second cycle: y changes only then.
+    """
     iterations = config.iterations
     internal = config.internal_width
     guard = config.guard
+    y_top = internal - 1
     # The step counter rests at `iterations` while idle; that address reads 0.
     rom = (*config.atan_table, 0)
     xs = _signed(internal)
     ys = _signed(internal)
     zs = _signed(config.angle_width)
+    x_shifted, y_shifted = _signed(internal), _signed(internal)
+    turn = _signed(config.angle_width)
     step = Signal(intbv(iterations, min=0, max=iterations + 1))
+    adding = Signal(bool(0))
     full = Signal(bool(0))
     level = Signal(bool(0))
     x_turned, y_turned = _signed(internal), _signed(internal)
     start_angle = _signed(config.angle_width)
     y_zero = Signal(bool(0))
-    turn = cordic_prerotation(x, y, x_turned, y_turned, start_angle, y_zero, config)
-    x_next, y_next, z_next = Signal(xs.val), Signal(ys.val), Signal(zs.val)
-    rotate = rotation(True, step, rom, step, (xs, ys, zs), (x_next, y_next, z_next))
+    prerotate = cordic_prerotation(x, y, x_turned, y_turned, start_angle, y_zero, config)
 
     @always_seq(clk.posedge, reset=rst)
     def iterate() -> None:
         if step != iterations:
-            xs.next = x_next
-            ys.next = y_next
-            if not level:
-                zs.next = z_next
-            if step == iterations - 1:
-                full.next = True
-            step.next = step + 1
+            if not adding:
+                x_shifted.next = xs >> step
+                y_shifted.next = ys >> step
+                turn.next = rom[step]
+                adding.next = True
+            else:
+                if ys[y_top] == 0:
+                    xs.next = xs + y_shifted
+                    ys.next = ys - x_shifted
+                    if not level:
+                        zs.next = zs + turn
+                else:
+                    xs.next = xs - y_shifted
+                    ys.next = ys + x_shifted
+                    if not level:
+                        zs.next = zs - turn
+                if step == iterations - 1:
+                    full.next = True
+                step.next = step + 1
+                adding.next = False
         elif full:
             if out_ready:
                 full.next = False
@@ -120,7 +143,7 @@ def cordic_iterative(clk: SignalLike, rst: SignalLike, in_valid: SignalLike,
         magnitude.next = xs >> guard
         angle.next = zs
 
-    return turn, rotate, iterate, outputs
+    return prerotate, iterate, outputs
 
 
 @block
@@ -146,7 +169,7 @@ def cordic_pipeline(clk: SignalLike, rst: SignalLike, advance: SignalLike, valid
                     magnitude: SignalLike, config: CordicConfig) -> Instances:  # fmt: skip
     """The unrolled vectoring CORDIC without handshakes: it moves when `advance` is high.
 
-    A pair entering on a cycle with `advance` high comes out ``config.latency`` advancing
+    A pair entering on a cycle with `advance` high comes out ``config.pipelined_latency`` advancing
     cycles later, `valid_out` marking the cycles that carry a result; ports otherwise as
     `cordic_vectoring`. For composing into a larger pipeline with one stall enable.
     """

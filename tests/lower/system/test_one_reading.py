@@ -22,6 +22,7 @@ ROOT = Path(__file__).resolve().parents[3]
 #: The examples whose logic rfc builds.
 EXAMPLES = (
     "quaternion_to_euler/project.yaml",
+    "quaternion_to_euler/project_iterative.yaml",  # the small core: iterative CORDICs
     "multi_type/MultiType.yaml",
     "image_pipeline/ImagePipeline.yaml",  # record-first stages, the pixels streamed through
     "rotation_converter/RotationConverterNode.yaml",  # PFP
@@ -60,7 +61,7 @@ def constant_only_blocks(verilog: str) -> list[str]:
     return found
 
 
-@pytest.fixture(scope="module", params=EXAMPLES, ids=lambda spec: spec.split("/")[0])
+@pytest.fixture(scope="module", params=EXAMPLES, ids=lambda spec: spec.removesuffix(".yaml"))
 def built(request, tmp_path_factory) -> Path:
     out = tmp_path_factory.mktemp("build")
     result = run_rfc("build", ROOT / "examples" / request.param, "-o", out, cwd=ROOT)

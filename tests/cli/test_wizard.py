@@ -107,6 +107,7 @@ def test_the_wizard_rebuilds_listing_1_with_the_examples_holistic_model(tmp_path
         "accelerator.py",
         "quat_to_euler.py",
         "quat_to_euler_pipelined.py",
+        "split_accumulator.py",
         "compare.py",
         "make_bags.py",
     ):

@@ -34,7 +34,8 @@ def _load(name: str) -> ModuleType:
 
 @cache
 def example() -> ModuleType:
-    """quat_to_euler.py as a module (examples are projects, not packages)."""
+    """quat_to_euler.py as a module (examples are projects, not packages; it imports its sums)."""
+    _load("split_accumulator")
     return _load("quat_to_euler")
 
 

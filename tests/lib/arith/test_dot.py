@@ -178,3 +178,13 @@ def test_gray_weights_map_to_three_registered_dsp48s_within_half_a_100_mhz_perio
     # the operand (A) and product (M) registers sit in the slices; B is the constant
     assert all(r["AREG"] == r["MREG"] == 1 for r in mapped.dsp_registers)
     assert mapped.arrival_ps <= 5000  # half the period at 100 MHz
+
+
+@pytest.mark.parametrize(
+    ("coefficients", "message"),
+    [((1 << 14, 0, 0), "outside the format"), ((1, 2), "need as many coefficients")],
+)
+def test_coefficients_outside_the_format_or_miscounted_are_refused(coefficients, message):
+    signals = ports(LUMA, 3)
+    with pytest.raises(ValueError, match=message):
+        constant_dot(*(signals[n] for n in CONSTANT_ORDER), coefficients, LUMA)

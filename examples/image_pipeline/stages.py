@@ -32,6 +32,10 @@ from pixel_streams import (
     pass_header,
 )
 
+from rfc.lib.arith.dot import dot_latency
+from rfc.lib.arith.dot_hdl import constant_dot
+from rfc.lib.fixed import FixedFormat
+
 #: The widest image Downscale and IntegralImage keep a row of (full HD fits).
 MAX_WIDTH = 2048
 
@@ -43,11 +47,19 @@ GRAY, HALF_GRAY, INTEGRAL = (
 )
 #: OpenCV's integer BT.601 luma weights for R, G and B, scaled by 2**14.
 GRAY_WEIGHTS = (4899, 9617, 1868)
+#: The luma's fixed-point format: the weights are 0.299, 0.587 and 0.114 in it, the bytes raw
+#: integers of it, and a pixel's luma (at most 255 raw) fits without saturating.
+LUMA = FixedFormat(15, 14)
 
 
 @block
 def rgb_to_gray(clk: Any, rst: Any, rgb: Any, gray: Any) -> Any:
-    """sensor_msgs/Image rgb (rgb8) in, gray (mono8) out: one pixel per cycle."""
+    """sensor_msgs/Image rgb (rgb8) in, gray (mono8) out: one pixel per cycle.
+
+    The luma is `rfc.lib.arith`'s dot product with constant coefficients: the bytes as raw
+    integers of Q1.14 times `GRAY_WEIGHTS` (0.299, 0.587, 0.114 in Q1.14), rounded half up once,
+    which is OpenCV's formula; it takes a pixel every cycle and stalls with the output stream.
+    """
     width = beat_bytes(rgb.data)
     capacity = width + 2  # two bytes of a split pixel and one beat
     data, d_valid, length = rgb.data.data, rgb.data.valid, rgb.data.length
@@ -55,27 +67,42 @@ def rgb_to_gray(clk: Any, rst: Any, rgb: Any, gray: Any) -> Any:
     bytes_in = Signal(intbv(0)[8 * capacity :])
     fill = Signal(intbv(0, min=0, max=capacity + 1))
     remaining = Signal(intbv(0)[len(length) :])
-    pixel, pixel_valid = Signal(intbv(0)[8:]), Signal(bool(0))
+    # the pixel into the dot product, its luma out of it, and how many pixels are inside
+    channels = [LUMA.signal() for _ in GRAY_WEIGHTS]
+    offer, take, unit_ready = (Signal(bool(0)) for _ in range(3))
+    luma, luma_valid = LUMA.signal(), Signal(bool(0))
+    pixel = Signal(intbv(0)[8:])
+    inside = Signal(intbv(0, min=0, max=dot_latency(len(GRAY_WEIGHTS)) + 2))
     accept, flush, empty = (Signal(bool(0)) for _ in range(3))
-    take, drained, started = (Signal(bool(0)) for _ in range(3))
+    drained, started = Signal(bool(0)), Signal(bool(0))
     bits = len(length)
     third = -(-(2 ** (bits + 1)) // 3)  # floor(n / 3) = n * third >> (bits + 1) for n < 2**bits
-    red, green, blue = GRAY_WEIGHTS
     out_length = gray.data.length
     text_done = Signal(bool(0))
     control = message_control(clk, rst, rgb, gray, drained, started, text_done)
     fields = image_fields(clk, rst, rgb, gray, GRAY, started, text_done)
-    packer = beat_packer(clk, rst, pixel, pixel_valid, accept, flush, gray.data, empty)
+    unit = constant_dot(clk, rst, offer, unit_ready, channels, luma_valid, accept, luma,
+                        GRAY_WEIGHTS, LUMA)  # fmt: skip
+    packer = beat_packer(clk, rst, pixel, luma_valid, accept, flush, gray.data, empty)
+    red, green, blue = channels
 
     @always_comb
     def flow() -> None:
-        take.next = fill >= 3 and (not pixel_valid or accept)
+        offer.next = fill >= 3
+        take.next = fill >= 3 and unit_ready
         if fill <= 2:
             d_ready.next = 1
         else:
-            d_ready.next = fill <= 5 and fill >= 3 and (not pixel_valid or accept)
-        flush.next = rgb.valid and remaining == 0 and fill < 3 and not pixel_valid
-        drained.next = rgb.valid and remaining == 0 and fill < 3 and not pixel_valid and empty
+            d_ready.next = fill <= 5 and fill >= 3 and unit_ready
+        flush.next = rgb.valid and remaining == 0 and fill < 3 and inside == 0
+        drained.next = rgb.valid and remaining == 0 and fill < 3 and inside == 0 and empty
+
+    @always_comb
+    def operands() -> None:
+        red.next = bytes_in[8:0]
+        green.next = bytes_in[16:8]
+        blue.next = bytes_in[24:16]
+        pixel.next = luma[8:0]  # 0 to 255: the weights sum to 1
 
     data_ready = rgb.data.ready
 
@@ -84,22 +111,15 @@ def rgb_to_gray(clk: Any, rst: Any, rgb: Any, gray: Any) -> Any:
         data_ready.next = d_ready
 
     @always_seq(clk.posedge, reset=rst)
+    def count_inside() -> None:
+        if take and not (luma_valid and accept):
+            inside.next = inside + 1
+        elif luma_valid and accept and not take:
+            inside.next = inside - 1
+
+    @always_seq(clk.posedge, reset=rst)
     def convert() -> None:
         out_length.next = (length * third) >> (bits + 1)
-        if accept:
-            pixel_valid.next = 0
-        if take:
-            # operands as wide as the sum: VHDL sizes a product by its operands
-            r = intbv(0)[22:]
-            g = intbv(0)[22:]
-            b = intbv(0)[22:]
-            r[8:] = bytes_in[8:0]
-            g[8:] = bytes_in[16:8]
-            b[8:] = bytes_in[24:16]
-            luma = intbv(0)[22:]
-            luma[:] = red * r + green * g + blue * b + 8192
-            pixel.next = luma[22:14]
-            pixel_valid.next = 1
         held = intbv(0)[8 * capacity :]
         held[:] = bytes_in
         count = intbv(0, min=0, max=capacity + 1)
@@ -127,7 +147,7 @@ def rgb_to_gray(clk: Any, rst: Any, rgb: Any, gray: Any) -> Any:
         bytes_in.next = held
         fill.next = count
 
-    return control, fields, packer, flow, ready, convert
+    return control, fields, unit, packer, flow, operands, ready, count_inside, convert
 
 
 @block

@@ -6,6 +6,7 @@ Each block has a bit-exact Python model beside it (`sincos`, `mac`, `engine`); t
 live in the `*_hdl` modules.
 """
 
+from rfc.lib.arith.dot import dot_latency, dot_product
 from rfc.lib.arith.sincos import SinCosConfig, sincos
 
-__all__ = ["SinCosConfig", "sincos"]
+__all__ = ["SinCosConfig", "dot_latency", "dot_product", "sincos"]

@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from rfc.lib.arith import dot_product
 from tests.examples.image_pipeline.example import example_module
 
 stages = example_module("stages")
@@ -52,6 +53,16 @@ def test_each_stage_gives_numpys_image_with_the_input_header(stage, width):
     results = run_stage(getattr(stages, block), pictures, WITH_ENCODING, width, seed=width)
     expected = [getattr(reference, formula)(p.pixels) for p in pictures]
     check(results, pictures, expected, encoding, pixel_bytes)
+
+
+def test_rgb_to_grays_dot_product_is_opencvs_luma_for_every_colour():
+    """The stage's block computes `dot_product` (tests/lib/arith/test_dot.py): its weights and
+    format must give OpenCV's integer luma on all 2**24 colours, none saturated."""
+    red, green = (c.ravel() for c in np.meshgrid(np.arange(256), np.arange(256)))
+    for blue in range(256):
+        rgb = np.stack([red, green, np.full_like(red, blue)], axis=-1)
+        got = dot_product([red, green, rgb[:, 2]], stages.GRAY_WEIGHTS, stages.LUMA)
+        assert np.array_equal(got, reference.gray(rgb))
 
 
 def test_a_stage_whose_output_has_no_encoding_sends_only_the_frame():

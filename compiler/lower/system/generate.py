@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from rfc.errors import located
 from rfc.ir.infrastructure import Converter, Scheduler
 from rfc.ir.model import BlockKind, Connection, Design
 from rfc.lib.converters.buffers import Buffer
@@ -38,7 +39,7 @@ from rfc.lower.system.slices import RegisterSlices
 from rfc.lower.system.stream_marks import StreamMarks
 from rfc.lower.system.top import CLOCK, RESET_N, Interface, Terminal, TopBuilder, wire_connection
 from rfc.messages.limits import Limits
-from rfc.passes.check_hardware import check_buffer_memory, record_first
+from rfc.passes.check_hardware import check_buffer_memory, converter_location, record_first
 from rfc.passes.names import snake_identifier as identifier
 from rfc.passes.resolve_scheduler import ResolveScheduler
 
@@ -167,22 +168,25 @@ def generate_system(
             streamed_through = side is Side.PUBLISHER and record_first(design, converter)
             if streamed_through:
                 record_first_publishers.add(converter.block)
-            component = converter_component(
-                converter, side, directory, f"{label}_{side.value}", limits, streamed_through
-            )
+            where = converter_location(design, converter)
+            with located(where):
+                component = converter_component(
+                    converter, side, directory, f"{label}_{side.value}", limits, streamed_through
+                )
+                pins = accelerator_ports(converter.layout, width, side, limits)
             components.append(component)
             if component.buffers:
                 buffers[converter.block] = component.buffers
             builder.cell(label, component.entity)
-            pins = accelerator_ports(converter.layout, width, side, limits)
             interface = {p.name: Terminal(label, p.name) for p in pins}
             if side is Side.PUBLISHER:
                 _wire_dma(builder, label, converter, side)
                 interfaces[(converter.block, "in0")] = interface
                 continue
-            interfaces[(converter.block, "out0")] = guards.protect(
-                builder, label, converter, interface, _wire_dma
-            )
+            with located(where):
+                interfaces[(converter.block, "out0")] = guards.protect(
+                    builder, label, converter, interface, _wire_dma
+                )
     guards.dma_input(builder, Terminal(MANAGER, MM2S))  # through a header tap if a guard needs it
     components += guards.components
     buffers |= guards.buffers
@@ -193,7 +197,8 @@ def generate_system(
             continue
         accelerator = design.accelerator(block.accelerator or "")
         if accelerator.name not in hardware_types:
-            hardware = accelerator_hardware(accelerator, block, width, limits, directory)
+            with located(accelerator.location):
+                hardware = accelerator_hardware(accelerator, block, width, limits, directory)
             hardware_types[accelerator.name] = hardware
             components += hardware.components
         hardware = hardware_types[accelerator.name]
@@ -217,21 +222,24 @@ def generate_system(
     for origin, connections in by_source.items():
         targets = [interfaces[(c.destination.block, c.destination.port or "")] for c in connections]
         what = f"connection {connections[0].source} → {connections[0].destination}"
-        if len(targets) == 1:
-            complete = marks.complete(
-                builder, design, connections[0], interfaces[origin], targets[0]
-            )
-            into = connections[0].destination
-            label = f"{identifier(into.block)}_{identifier(into.port or 'in')}_slice"
-            sliced = slices.insert(
-                builder, targets[0], label, streams=into.block not in record_first_publishers
-            )
-            wire_connection(builder, complete, sliced, what)
-            continue
-        if len(targets) not in forks:
-            forks[len(targets)] = fork_component(len(targets), directory, f"rfc_fork{len(targets)}")
-            components.append(forks[len(targets)])
-        _fan_out(builder, interfaces[origin], targets, forks[len(targets)].entity, what)
+        with located(connections[0].location):
+            if len(targets) == 1:
+                complete = marks.complete(
+                    builder, design, connections[0], interfaces[origin], targets[0]
+                )
+                into = connections[0].destination
+                label = f"{identifier(into.block)}_{identifier(into.port or 'in')}_slice"
+                sliced = slices.insert(
+                    builder, targets[0], label, streams=into.block not in record_first_publishers
+                )
+                wire_connection(builder, complete, sliced, what)
+                continue
+            if len(targets) not in forks:
+                forks[len(targets)] = fork_component(
+                    len(targets), directory, f"rfc_fork{len(targets)}"
+                )
+                components.append(forks[len(targets)])
+            _fan_out(builder, interfaces[origin], targets, forks[len(targets)].entity, what)
 
     components += marks.components
     components += slices.components

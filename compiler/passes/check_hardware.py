@@ -31,7 +31,6 @@ from rfc.ir.model import (
 )
 from rfc.lib.converters.buffer_sizes import Buffer, buffers_of
 from rfc.lib.converters.plan import plan
-from rfc.lib.converters.ports import Direction as PinDirection
 from rfc.lib.converters.ports import Port, PortRole, Side, accelerator_signature, ports_of
 from rfc.lib.converters.prefix_plan import SLACK_BEATS, checking_plan
 from rfc.lib.converters.steps import ROOT, Payload, Plan
@@ -50,8 +49,8 @@ PREFIX = "(frame before '{}')"
 #: Ports every accelerator has besides its message pins.
 CLOCK, RESET = "clk", "rst"
 _CLOCK_PORTS = (
-    Port(CLOCK, 1, PinDirection.IN, PortRole.CLOCK),
-    Port(RESET, 1, PinDirection.IN, PortRole.RESET),
+    Port(CLOCK, 1, Direction.IN, PortRole.CLOCK),
+    Port(RESET, 1, Direction.IN, PortRole.RESET),
 )
 
 

@@ -20,10 +20,10 @@ from rfc.ir.model import BlockKind, Connection, Design
 from rfc.lib.converters.buffers import Buffer
 from rfc.lib.converters.malformed import DROP_REASONS, status_port
 from rfc.lib.converters.plan import accelerator_ports
-from rfc.lib.converters.ports import COUNTER_BITS, Side
+from rfc.lib.converters.ports import COUNTER_BITS, Direction, Side
 from rfc.lib.manager.entity import ManagerShape
 from rfc.lib.schedulers.spec import DEFAULT_IDLE, AnySchedulerSpec, SchedulerSpec
-from rfc.lower.netlist import EntityDecl, Mode, Netlist, PortDecl, constant
+from rfc.lower.netlist import EntityDecl, Netlist, PortDecl, constant
 from rfc.lower.system.accelerators import AcceleratorHardware, HlsCore, accelerator_hardware
 from rfc.lower.system.busy import busy_port, watch_blocks, watched_blocks
 from rfc.lower.system.components import (
@@ -274,9 +274,9 @@ def generate_system(
 
 def _top_entity(design: Design) -> EntityDecl:
     width = design.project.bus_width
-    ports = [PortDecl(CLOCK, Mode.IN, 1, True), PortDecl(RESET_N, Mode.IN, 1, True)]
+    ports = [PortDecl(CLOCK, Direction.IN, 1, True), PortDecl(RESET_N, Direction.IN, 1, True)]
     for group, into in ((MM2S, True), (S2MM, False)):
-        data, back = (Mode.IN, Mode.OUT) if into else (Mode.OUT, Mode.IN)
+        data, back = (Direction.IN, Direction.OUT) if into else (Direction.OUT, Direction.IN)
         ports += [
             PortDecl(f"{group}_tdata", data, width),
             PortDecl(f"{group}_tkeep", data, width // 8),
@@ -287,7 +287,7 @@ def _top_entity(design: Design) -> EntityDecl:
     assert design.infrastructure is not None
     for converter in design.infrastructure.subscribers:
         ports += [
-            PortDecl(status_port(converter.id, reason), Mode.OUT, COUNTER_BITS)
+            PortDecl(status_port(converter.id, reason), Direction.OUT, COUNTER_BITS)
             for reason in DROP_REASONS
         ]
     ports += busy_port(design)
@@ -337,7 +337,7 @@ def _tie_unused_readies(builder: TopBuilder) -> None:
     for label, entity in builder.cells():
         for port in entity.ports:
             terminal = Terminal(label, port.name)
-            unused = port.mode is Mode.IN and port.wire and port.name.endswith("ready")
+            unused = port.mode is Direction.IN and port.wire and port.name.endswith("ready")
             if unused and not builder.driven(terminal):
                 builder.connect(terminal, constant(1, 1, wire=True))
 

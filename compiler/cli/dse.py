@@ -21,6 +21,7 @@ from rich.console import Console
 from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
+from rfc.cli.progress import counting_bar
 from rfc.errors import RfcError
 
 if TYPE_CHECKING:
@@ -307,16 +308,7 @@ def _project(
     assert design.infrastructure is not None  # the model pipeline derives it
     traffic = project_traffic(design.project.name, design.infrastructure.scheduler.inputs, horizon)
     _load_kernels()
-    console = Console(stderr=True, highlight=False)
-    with Progress(
-        TextColumn("simulating candidates"),
-        BarColumn(),
-        TextColumn("{task.completed}/{task.total}"),
-        TimeElapsedColumn(),
-        console=console,
-        transient=True,
-        disable=as_json or not console.is_terminal,
-    ) as bar:
+    with counting_bar("simulating candidates", hidden=as_json) as bar:
         task = bar.add_task("candidates", total=None)
         recommendation = recommend(
             traffic,

@@ -18,7 +18,6 @@ from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 from rich.console import Console
-from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
 from rfc.cli.progress import counting_bar
@@ -190,9 +189,8 @@ def _sweep(
 
     names = (find_dataset(dataset).name,) if dataset else tuple(DATASETS)
     plan = Plan(datasets=names, sizes=sizes, replicates=replicates, seed=seed)
-    console = Console(stderr=True, highlight=False)
     _load_kernels()
-    with _progress(console) as progress:
+    with counting_bar("{task.description}", percent=True) as progress:
         task = progress.add_task("simulating", total=1.0)
         result = run_sweep(
             plan,
@@ -252,18 +250,6 @@ def _load_kernels() -> None:
             file=sys.stderr,
         )
     load_kernels()
-
-
-def _progress(console: Console) -> Progress:
-    return Progress(
-        TextColumn("{task.description}"),
-        BarColumn(),
-        TextColumn("{task.percentage:>3.0f}%"),
-        TimeElapsedColumn(),
-        console=console,
-        transient=True,
-        disable=not console.is_terminal,
-    )
 
 
 #: Columns of the printed sweep: metric and short heading.

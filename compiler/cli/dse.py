@@ -109,6 +109,7 @@ def dse(
             "any difference in the metrics.",
         ),
     ] = False,
+    # Typer declares every option in the signature: rfc sim's options look alike, not the same.
     no_synth: Annotated[
         bool, typer.Option("--no-synth", help="Skip LUT/FF (Figure 6, Table 3).")
     ] = False,

@@ -215,6 +215,8 @@ class Endpoint:
         return self.block if self.port is None else f"{self.block}.{self.port}"
 
 
+# Shares Port's include/exclude/spots tail: a port's patterns say what it needs, a connection's
+# what it carries (check-connections reconciles the two).
 @dataclass(frozen=True)
 class Connection(_Spotted):
     """Messages flowing from a source port to a destination port.

@@ -22,6 +22,7 @@ CLOCK_PORTS = frozenset({"clk", "ap_clk"})
 RESET_PORTS = frozenset({"rst", "ap_rst"})
 
 
+# Two names and a __str__, like rfc.cluster.Failure in shape only: a cell's port, not a job.
 @dataclass(frozen=True)
 class Terminal:
     """A port of a cell: ``(cell label, port name)``."""

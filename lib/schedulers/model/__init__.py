@@ -86,6 +86,7 @@ def make_model(
     )
 
 
+# `make_model`'s arguments: it wraps this tree in a model.
 def leaf_tree(
     algorithm: str | Algorithm,
     n: int,

@@ -148,8 +148,7 @@ def check_counter_bits(bits: int, transfer: Sequence[int], deadline: Sequence[in
         raise RfcError(
             f"counter width {bits} bits cannot hold deadlines up to {max(deadline)} cycles and "
             f"transfers up to {max(transfer)} beats; it must be from 1 to {MAX_COUNTER_BITS} "
-            "and 2^(bits-1) "
-            f"must be at least {needed}",
+            f"and 2^(bits-1) must be at least {needed}",
             hint=f"leave it out to get {default_counter_bits(transfer, deadline)} bits",
         )
 

@@ -10,10 +10,11 @@ dependencies.
 from __future__ import annotations
 
 import difflib
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
 
-__all__ = ["RfcError", "SourceLocation", "closest", "did_you_mean"]
+__all__ = ["RfcError", "SourceLocation", "closest", "did_you_mean", "located"]
 
 
 @dataclass(frozen=True)
@@ -51,6 +52,21 @@ class RfcError(Exception):
         if self.hint:
             text += f"\n  hint: {self.hint}"
         return text
+
+
+@contextmanager
+def located(location: SourceLocation) -> Iterator[None]:
+    """Give an `RfcError` raised inside, that has no location, `location`.
+
+    The hardware library works on plain data and knows no spec: the compiler calls it inside
+    this context with the spec element the call is for, so the user learns which one to fix.
+    """
+    try:
+        yield
+    except RfcError as exc:
+        if exc.location is not None:
+            raise
+        raise RfcError(exc.message, location=location, hint=exc.hint) from None
 
 
 def closest(word: str, candidates: Iterable[str], limit: int = 3) -> list[str]:

@@ -108,6 +108,7 @@ class SoftwareBlock:
     output_types: tuple[str, ...]
 
 
+# Alike in shape only with the topic records above: each kind of entry of the plan has one.
 @dataclass(frozen=True)
 class LogicFiles:
     """The build's logic, for the simulated transport: file list, top entity, bus width."""

@@ -18,9 +18,9 @@ from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 from rich.console import Console
-from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
+from rfc.cli.progress import counting_bar
 from rfc.errors import RfcError
 
 if TYPE_CHECKING:
@@ -109,6 +109,7 @@ def dse(
             "any difference in the metrics.",
         ),
     ] = False,
+    # Typer declares every option in the signature: rfc sim's options look alike, not the same.
     no_synth: Annotated[
         bool, typer.Option("--no-synth", help="Skip LUT/FF (Figure 6, Table 3).")
     ] = False,
@@ -189,9 +190,8 @@ def _sweep(
 
     names = (find_dataset(dataset).name,) if dataset else tuple(DATASETS)
     plan = Plan(datasets=names, sizes=sizes, replicates=replicates, seed=seed)
-    console = Console(stderr=True, highlight=False)
     _load_kernels()
-    with _progress(console) as progress:
+    with counting_bar("{task.description}", percent=True) as progress:
         task = progress.add_task("simulating", total=1.0)
         result = run_sweep(
             plan,
@@ -253,18 +253,6 @@ def _load_kernels() -> None:
     load_kernels()
 
 
-def _progress(console: Console) -> Progress:
-    return Progress(
-        TextColumn("{task.description}"),
-        BarColumn(),
-        TextColumn("{task.percentage:>3.0f}%"),
-        TimeElapsedColumn(),
-        console=console,
-        transient=True,
-        disable=not console.is_terminal,
-    )
-
-
 #: Columns of the printed sweep: metric and short heading.
 _SHOWN = (
     ("completed", "completed"),
@@ -307,16 +295,7 @@ def _project(
     assert design.infrastructure is not None  # the model pipeline derives it
     traffic = project_traffic(design.project.name, design.infrastructure.scheduler.inputs, horizon)
     _load_kernels()
-    console = Console(stderr=True, highlight=False)
-    with Progress(
-        TextColumn("simulating candidates"),
-        BarColumn(),
-        TextColumn("{task.completed}/{task.total}"),
-        TimeElapsedColumn(),
-        console=console,
-        transient=True,
-        disable=as_json or not console.is_terminal,
-    ) as bar:
+    with counting_bar("simulating candidates", hidden=as_json) as bar:
         task = bar.add_task("candidates", total=None)
         recommendation = recommend(
             traffic,

@@ -14,8 +14,8 @@ J = TypeVar("J")
 R = TypeVar("R")
 
 
-def counting_bar(label: str, *, hidden: bool = False) -> Progress:
-    """A bar on stderr counting done of total, gone when the work ends.
+def counting_bar(label: str, *, hidden: bool = False, percent: bool = False) -> Progress:
+    """A bar on stderr counting done of total (or, with `percent`, its share), gone at the end.
 
     It shows only on a terminal, so piped output and logs stay clean; `hidden` also hides it
     (while a command prints JSON, say).
@@ -24,7 +24,7 @@ def counting_bar(label: str, *, hidden: bool = False) -> Progress:
     return Progress(
         TextColumn(label),
         BarColumn(),
-        MofNCompleteColumn(),
+        TextColumn("{task.percentage:>3.0f}%") if percent else MofNCompleteColumn(),
         TimeElapsedColumn(),
         console=console,
         transient=True,

@@ -101,6 +101,7 @@ def sim(
             "the logic counts as stalled (plus 4x the longest transfer).",
         ),
     ] = DEFAULT_STALL_CYCLES,
+    # Typer declares every option in the signature: rfc build's options look alike, not the same.
     seed: Annotated[int, typer.Option("--seed", help="Seed of random idle/backpressure.")] = 1,
     as_json: Annotated[
         bool, typer.Option("--json", help="Print the account as one JSON document.")

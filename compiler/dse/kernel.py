@@ -107,6 +107,8 @@ def simulate(
         )
 
 
+# `simulate`'s arrays again, with the state of one replicate: numba kernels take arrays one by
+# one, not a record of them.
 @kernel
 def _replicate(
     tree: Structure,

@@ -162,6 +162,7 @@ def evaluate(scheduler: str, traffic: ProjectTraffic) -> Candidate:
     return Candidate(scheduler, dict(zip(METRICS, (float(v) for v in row), strict=True)))
 
 
+# Four tuples, like the wizard's SystemAnswers in shape only.
 @dataclass(frozen=True)
 class Recommendation:
     """The ranking of the candidates for a project and why the first one wins."""

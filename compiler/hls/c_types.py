@@ -326,6 +326,7 @@ def hls_header(
     return "\n".join(lines)
 
 
+# `hls_header`'s parameters: the stub is the .cpp that includes that header.
 def hls_stub(
     accelerator_name: str,
     ports: Mapping[str, tuple[Port, ...]],

@@ -94,6 +94,7 @@ class Converter:
         return bool(self.length_fields)
 
 
+# Four fields, like rfc.toolchain's VhdlEntity in shape only.
 @dataclass(frozen=True)
 class DmaChannel:
     """One DMA channel and the converters on its end, indexed by chunk id."""

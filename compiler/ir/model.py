@@ -19,6 +19,9 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from rfc.errors import SourceLocation
+
+# Which way data flows through a port: the converters' own direction, one enum for every layer.
+from rfc.lib.converters.ports import Direction as Direction
 from rfc.messages.limits import Limits
 
 if TYPE_CHECKING:
@@ -58,13 +61,6 @@ class Stage(IntEnum):
     """The infrastructure (ids, DMA, frame-length circuits, scheduler inputs) is derived."""
     CHECKED = 6
     """The logic's rules hold: names, accelerator sources, fan-out, block RAM."""
-
-
-class Direction(StrEnum):
-    """Which way data flows through a port."""
-
-    IN = "in"
-    OUT = "out"
 
 
 class BlockKind(StrEnum):
@@ -219,6 +215,8 @@ class Endpoint:
         return self.block if self.port is None else f"{self.block}.{self.port}"
 
 
+# Shares Port's include/exclude/spots tail: a port's patterns say what it needs, a connection's
+# what it carries (check-connections reconciles the two).
 @dataclass(frozen=True)
 class Connection(_Spotted):
     """Messages flowing from a source port to a destination port.

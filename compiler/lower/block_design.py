@@ -13,7 +13,8 @@ from __future__ import annotations
 from collections import defaultdict
 from dataclasses import dataclass
 
-from rfc.lower.netlist import Mode, Net, Netlist, NetlistError
+from rfc.lib.converters.ports import Direction
+from rfc.lower.netlist import Net, Netlist, NetlistError
 
 #: The netlist's ports that the infrastructure drives or reads.
 CLOCK = "aclk"
@@ -76,7 +77,7 @@ def block_design(netlist: Netlist) -> BlockDesign:
                 streams[stream].add(f"{label}/{port.removesuffix(net.signal[len(stream) :])}")
                 continue
             pins[net.signal].append(pin)
-    outputs = {p.name for p in netlist.entity.ports if p.mode is Mode.OUT}
+    outputs = {p.name for p in netlist.entity.ports if p.mode is Direction.OUT}
     for target, source in netlist.assignments():
         if target.signal in outputs and source.signal in pins:
             # a copy of a net onto a top-level output (the status ports, docs/protocol.md):

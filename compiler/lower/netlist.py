@@ -14,17 +14,11 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
-from enum import StrEnum
+
+from rfc.lib.converters.ports import Direction
 
 _IDENTIFIER = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 _INVERSION = re.compile(r"^not (\w+)$")
-
-
-class Mode(StrEnum):
-    """Port direction."""
-
-    IN = "in"
-    OUT = "out"
 
 
 @dataclass(frozen=True)
@@ -39,7 +33,7 @@ class PortDecl:
     """
 
     name: str
-    mode: Mode
+    mode: Direction
     bits: int
     wire: bool = False
 
@@ -191,7 +185,7 @@ class Netlist:
         for port in entity.ports:
             net = connections[port.name]
             if net is None:
-                if port.mode is Mode.IN:
+                if port.mode is Direction.IN:
                     raise NetlistError(f"{label}: input {port.name} must be driven")
                 continue
             if net.bits != port.bits or net.wire != port.wire:
@@ -247,12 +241,12 @@ class Netlist:
                 drivers[key] = by
 
         for port in self.entity.ports:
-            if port.mode is Mode.IN:
+            if port.mode is Direction.IN:
                 drive(self.port(port.name), "the port")
         for instance in self._instances:
             for port in instance.entity.ports:
                 net = instance.connections[port.name]
-                if port.mode is Mode.OUT and net is not None:
+                if port.mode is Direction.OUT and net is not None:
                     drive(net, f"{instance.label}.{port.name}")
         for target, _ in self._assignments:
             drive(target, f"assignment to {target.text}")

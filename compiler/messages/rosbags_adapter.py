@@ -577,6 +577,7 @@ def write_bag(
             raise RfcError(f"cannot write bag '{target}': {exc}") from None
 
 
+# `write_bag`'s parameters minus the path: it fills a writer write_bag has opened.
 def _fill(
     writer: Rosbag1Writer | Rosbag2Writer,
     types: MessageTypes,

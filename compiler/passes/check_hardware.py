@@ -17,7 +17,7 @@ from dataclasses import dataclass, replace
 from math import ceil
 from typing import Any, ClassVar
 
-from rfc.errors import RfcError, SourceLocation
+from rfc.errors import RfcError, SourceLocation, located
 from rfc.hls.ports import accelerator_core, input_holds
 from rfc.ir.infrastructure import Converter
 from rfc.ir.model import (
@@ -31,7 +31,6 @@ from rfc.ir.model import (
 )
 from rfc.lib.converters.buffer_sizes import Buffer, buffers_of
 from rfc.lib.converters.plan import plan
-from rfc.lib.converters.ports import Direction as PinDirection
 from rfc.lib.converters.ports import Port, PortRole, Side, accelerator_signature, ports_of
 from rfc.lib.converters.prefix_plan import SLACK_BEATS, checking_plan
 from rfc.lib.converters.steps import ROOT, Payload, Plan
@@ -50,8 +49,8 @@ PREFIX = "(frame before '{}')"
 #: Ports every accelerator has besides its message pins.
 CLOCK, RESET = "clk", "rst"
 _CLOCK_PORTS = (
-    Port(CLOCK, 1, PinDirection.IN, PortRole.CLOCK),
-    Port(RESET, 1, PinDirection.IN, PortRole.RESET),
+    Port(CLOCK, 1, Direction.IN, PortRole.CLOCK),
+    Port(RESET, 1, Direction.IN, PortRole.RESET),
 )
 
 
@@ -66,18 +65,14 @@ class CheckHardware:
         infrastructure = design.infrastructure
         assert infrastructure is not None, "check-hardware runs after derive-infrastructure"
         limits, width = design.project.maxima, design.project.bus_width
-        locations = {b.name: b.location for b in design.blocks}
         buffers: dict[str, tuple[Buffer, ...]] = {}
         for side, converters in (
             (Side.SUBSCRIBER, infrastructure.subscribers),
             (Side.PUBLISHER, infrastructure.publishers),
         ):
             for converter in converters:
-                location = locations.get(converter.block, design.project.location)
-                chosen = located(
-                    lambda c=converter: converter_plan(c, limits, record_first(design, c)),
-                    location,
-                )
+                with located(converter_location(design, converter)):
+                    chosen = converter_plan(converter, limits, record_first(design, converter))
                 if side is Side.PUBLISHER and (held := buffers_of(chosen)):
                     buffers[converter.block] = held
                 if side is Side.SUBSCRIBER and (
@@ -89,9 +84,8 @@ class CheckHardware:
             if block.name in infrastructure.software:
                 continue
             accelerator = design.accelerator(block.accelerator or "")
-            signatures = located(
-                lambda b=block: accelerator_signatures(b, width, limits), accelerator.location
-            )
+            with located(accelerator.location):
+                signatures = accelerator_signatures(block, width, limits)
             if accelerator.name not in checked:
                 checked.add(accelerator.name)
                 check_sources(accelerator, signatures)
@@ -102,14 +96,10 @@ class CheckHardware:
         return replace(design, stage=Stage.CHECKED)
 
 
-def located(make: Any, location: SourceLocation) -> Any:
-    """Call `make()`; an error without a location gets `location` (lib knows no spec)."""
-    try:
-        return make()
-    except RfcError as exc:
-        if exc.location is not None:
-            raise
-        raise RfcError(exc.message, location=location, hint=exc.hint) from None
+def converter_location(design: Design, converter: Converter) -> SourceLocation:
+    """Where a converter's block was written (a crossing's: the project, which implies it)."""
+    blocks = (b.location for b in design.blocks if b.name == converter.block)
+    return next(blocks, design.project.location)
 
 
 def converter_plan(converter: Converter, limits: Limits, record_first: bool = False) -> Plan:

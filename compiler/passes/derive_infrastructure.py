@@ -13,7 +13,7 @@ import math
 from dataclasses import dataclass, replace
 from typing import ClassVar
 
-from rfc.errors import RfcError
+from rfc.errors import RfcError, located
 from rfc.ir.infrastructure import (
     CHUNK_HEADER_BYTES,
     Buffer,
@@ -25,6 +25,7 @@ from rfc.ir.infrastructure import (
     SchedulerInput,
 )
 from rfc.ir.model import Block, BlockKind, Design, Stage
+from rfc.lib.schedulers.spec import DEFAULT_IDLE, MAX_INPUTS, check_inputs, check_timing
 from rfc.messages.layout import FieldKind, Layout, LayoutField
 from rfc.messages.limits import Limits
 from rfc.passes.frame_size import default_frame_bytes, frame_bound
@@ -76,10 +77,7 @@ class DeriveInfrastructure:
                     "s2mm", DmaDirection.PL_TO_PS, width, tuple(c.block for c in publishers)
                 ),
             ),
-            scheduler=Scheduler(
-                design.project.scheduler,
-                tuple(_scheduler_input(c, _block_of(design, c)) for c in publishers),
-            ),
+            scheduler=_scheduler(design, publishers),
             buffers=buffers,
             hardware_connections=placement.hardware_connections,
             software=placement.software,
@@ -166,6 +164,15 @@ def _length_known_late(field: LayoutField) -> bool:
     return field.element is not None and any(f.is_dynamic for f in field.element.fields)
 
 
+def _scheduler(design: Design, publishers: tuple[Converter, ...]) -> Scheduler:
+    """The scheduler of the publishers; the first one beyond the most it can take is refused."""
+    if len(publishers) > MAX_INPUTS:
+        with located(design.block(publishers[MAX_INPUTS].block).location):
+            check_inputs(len(publishers), "the scheduler of the publishers")
+    inputs = tuple(_scheduler_input(c, _block_of(design, c)) for c in publishers)
+    return Scheduler(design.project.scheduler, inputs)
+
+
 def _scheduler_input(converter: Converter, block: Block | None) -> SchedulerInput:
     exact = converter.frame_bytes is not None
     frame = converter.frame_bytes if exact else converter.max_frame_bytes
@@ -184,6 +191,9 @@ def _scheduler_input(converter: Converter, block: Block | None) -> SchedulerInpu
             "be met",
             location=block.at(attribute),
         )
+    if block is not None:  # a crossing publisher has no timing of its own
+        with located(block.at("deadline" if block.deadline is not None else "period")):
+            check_timing(beats, converter.deadline or beats + DEFAULT_IDLE)
     return SchedulerInput(
         index=converter.id,
         publisher=converter.block,

@@ -198,6 +198,7 @@ def check_unique(named: Iterable[tuple[str, SourceLocation]], what: str, where: 
         seen[key] = (name, location)
 
 
+# Raises like `check_identifier`, for ROS graph names: slashes, no VHDL rules.
 def check_topic(topic: str, owner: str, location: SourceLocation) -> None:
     """Raise unless `topic` is a valid ROS graph resource name."""
     if not _TOPIC.fullmatch(topic):

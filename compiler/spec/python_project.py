@@ -52,23 +52,21 @@ class _Source:
     def include(self, *paths: str) -> Selection:
         """Carry only these fields over the next ``>>`` (dotted paths, ``*`` wildcards)."""
         location, _ = call_site()
-        return Selection(
-            self._project,
-            self._block,
-            self._port,
-            self._include + as_texts(paths, "include", location),
-            self._exclude,
-        )
+        return self._selection(as_texts(paths, "include", location), ())
 
     def exclude(self, *paths: str) -> Selection:
         """Do not carry these fields over the next ``>>``."""
         location, _ = call_site()
+        return self._selection((), as_texts(paths, "exclude", location))
+
+    def _selection(self, include: tuple[str, ...], exclude: tuple[str, ...]) -> Selection:
+        """This source with more fields included and excluded."""
         return Selection(
             self._project,
             self._block,
             self._port,
-            self._include,
-            self._exclude + as_texts(paths, "exclude", location),
+            self._include + include,
+            self._exclude + exclude,
         )
 
     def __rshift__(self, destination: Any) -> BlockHandle:

@@ -172,6 +172,8 @@ ACCELERATOR = Section(
         Key("reference", (_S,), "Python reference model: 'file.py:function' or 'function'."),
     ),
 )
+# include/exclude read as PORT's, but here they select what one connection carries, there
+# what an accelerator input needs.
 OUTGOING = Section(
     "outgoing",
     "A connection from this block to another.",

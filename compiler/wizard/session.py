@@ -180,23 +180,28 @@ class Session:
         return check
 
     def _directories(self, text: str, location: SourceLocation) -> tuple[str, ...]:
-        found = _list(text)
-        for entry in found:
-            if not (self.base / entry).is_dir():
-                raise RfcError(
-                    f"'{entry}' is not a directory (paths are relative to {self.base})",
-                    location=location,
-                    hint="give folders that hold <package>/msg/<Name>.msg files",
-                )
-        return found
+        hint = "give folders that hold <package>/msg/<Name>.msg files"
+        return self._existing(text, location, Path.is_dir, "'{}' is not a directory", hint)
 
     def _bags(self, text: str, location: SourceLocation) -> tuple[str, ...]:
+        return self._existing(text, location, Path.is_file, "bag '{}' does not exist")
+
+    def _existing(
+        self,
+        text: str,
+        location: SourceLocation,
+        exists: Callable[[Path], bool],
+        problem: str,
+        hint: str | None = None,
+    ) -> tuple[str, ...]:
+        """Comma-separated paths relative to the base, each one `exists` accepts."""
         found = _list(text)
         for entry in found:
-            if not (self.base / entry).is_file():
+            if not exists(self.base / entry):
                 raise RfcError(
-                    f"bag '{entry}' does not exist (paths are relative to {self.base})",
+                    f"{problem.format(entry)} (paths are relative to {self.base})",
                     location=location,
+                    hint=hint,
                 )
         return found
 

@@ -19,6 +19,7 @@ from rfc.lib.types import Instances, SignalLike
 SchedulerBlock = Callable[..., Instances]
 
 
+# The ports of every `SchedulerBlock`, then how to build a child's or the parent's block.
 @block
 def composition(
     clk: SignalLike,

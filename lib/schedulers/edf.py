@@ -84,6 +84,7 @@ def roedf_table(
     def shared_adder() -> None:
         due.next = timer + relative
 
+    # As countdown_table's, on absolute deadlines: MyHDL names a process after its block.
     @always_comb
     def prioritize() -> None:
         for i in range(n):

@@ -26,6 +26,10 @@ DEFAULT_IDLE = 100
 #: Extra counter bits beyond the largest timing constant: the lateness (or, for ROEDF, the
 #: spread of pending deadlines) up to which the counters stay exact, about 128 x max(D, T).
 COUNTER_HEADROOM_BITS = 8
+#: The widest deadline/slack counters the generator builds.
+MAX_COUNTER_BITS = 48
+#: The longest deadline (cycles) or transfer (beats) that counters of the default width time.
+MAX_TIMING = (1 << (MAX_COUNTER_BITS - 1 - COUNTER_HEADROOM_BITS)) - 1
 
 
 class Algorithm(StrEnum):
@@ -101,6 +105,36 @@ def check_inputs(n: int, what: str = "a scheduler") -> None:
         )
 
 
+def check_timing(transfer: int, deadline: int) -> None:
+    """Reject a deadline or transfer longer than the widest counters time with their headroom.
+
+    Raises:
+        RfcError: `transfer` or `deadline` is above `MAX_TIMING`.
+    """
+    if max(transfer, deadline) > MAX_TIMING:
+        raise RfcError(
+            f"a deadline of {deadline} cycles with a transfer of {transfer} beats is too long "
+            f"for the scheduler's {MAX_COUNTER_BITS}-bit counters: they time at most "
+            f"{MAX_TIMING} cycles",
+            hint=f"give a deadline (or period) of at most {MAX_TIMING} cycles",
+        )
+
+
+def counter_bits_for(
+    transfer: Sequence[int], deadline: Sequence[int], bits: int | None = None
+) -> int:
+    """The width of the deadline/slack counters: `bits` checked, else the default width.
+
+    Raises:
+        RfcError: `bits` is too narrow, or the constants too long for any counter.
+    """
+    if bits is None:
+        check_timing(max(transfer), max(deadline))
+        bits = default_counter_bits(transfer, deadline)
+    check_counter_bits(bits, transfer, deadline)
+    return bits
+
+
 def check_counter_bits(bits: int, transfer: Sequence[int], deadline: Sequence[int]) -> None:
     """Reject counters too narrow to hold every constant with room for lateness.
 
@@ -110,11 +144,11 @@ def check_counter_bits(bits: int, transfer: Sequence[int], deadline: Sequence[in
         RfcError: `bits` is too small (or absurdly large).
     """
     needed = max(t + d for t, d in zip(transfer, deadline, strict=True)) + 1
-    if not 1 <= bits <= 48 or (1 << (bits - 1)) < needed:
+    if not 1 <= bits <= MAX_COUNTER_BITS or (1 << (bits - 1)) < needed:
         raise RfcError(
             f"counter width {bits} bits cannot hold deadlines up to {max(deadline)} cycles and "
-            f"transfers up to {max(transfer)} beats; it must be from 1 to 48 and 2^(bits-1) "
-            f"must be at least {needed}",
+            f"transfers up to {max(transfer)} beats; it must be from 1 to {MAX_COUNTER_BITS} "
+            f"and 2^(bits-1) must be at least {needed}",
             hint=f"leave it out to get {default_counter_bits(transfer, deadline)} bits",
         )
 
@@ -172,8 +206,7 @@ class SchedulerSpec:
         if deadline is None:
             deadline = [t + DEFAULT_IDLE for t in transfers]
         deadlines = _per_input(deadline, n, "the deadline")
-        bits = default_counter_bits(transfers, deadlines) if counter_bits is None else counter_bits
-        check_counter_bits(bits, transfers, deadlines)
+        bits = counter_bits_for(transfers, deadlines, counter_bits)
         return cls(parse_algorithm(algorithm), n, transfers, deadlines, bits)
 
     @property

@@ -74,6 +74,7 @@ class PolicyHardware:
     table: Callable[..., Instances] | None
 
 
+# The ports of every `SchedulerBlock`, then the algorithm's parts.
 @block
 def statechart(
     clk: SignalLike,

@@ -1,4 +1,4 @@
-"""The counting progress bar of rfc sim and rfc sched: on a terminal only, unless hidden."""
+"""The counting progress bar of rfc sim, sched and dse: on a terminal only, unless hidden."""
 
 from __future__ import annotations
 
@@ -19,6 +19,19 @@ def test_the_bar_counts_on_stderr_at_a_terminal(monkeypatch, capsys):
     captured = capsys.readouterr()
     assert "replaying" in captured.err
     assert "3/3" in captured.err
+    assert captured.out == ""
+
+
+def test_a_percent_bar_shows_its_tasks_share(monkeypatch, capsys):
+    monkeypatch.setenv("FORCE_COLOR", "1")
+    monkeypatch.delenv("TTY_COMPATIBLE", raising=False)
+    with counting_bar("{task.description}", percent=True) as bar:
+        task = bar.add_task("simulating", total=1.0)
+        bar.advance(task, 0.25)
+        bar.refresh()
+    captured = capsys.readouterr()
+    assert "simulating" in captured.err
+    assert " 25%" in captured.err
     assert captured.out == ""
 
 

@@ -247,3 +247,24 @@ def test_a_system_that_does_not_check_is_reported_at_the_specs_line_and_nothing_
     assert ".rfc-wizard-draft" not in result.stderr
     assert "Traceback" not in result.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == ["answers.txt"]
+
+
+@pytest.mark.parametrize(
+    ("line", "answer", "message", "hint"),
+    [
+        (7, "no_msgs", "'no_msgs' is not a directory", "give folders that hold <package>/msg/"),
+        (8, "missing.bag", "bag 'missing.bag' does not exist", None),
+    ],
+)
+def test_a_path_that_does_not_exist_names_its_answer_and_writes_nothing(
+    tmp_path, line, answer, message, hint
+):
+    answers = tmp_path / "answers.txt"
+    answers.write_text("\n" * (line - 1) + f"{answer}\n")
+    result = run_rfc("wizard", "--answers", answers, cwd=tmp_path)
+    assert result.returncode == 1
+    first = result.stderr.splitlines()[0]
+    assert first == f"error: {answers}:{line}:1: {message} (paths are relative to .)"
+    assert (hint in result.stderr) if hint else ("hint" not in result.stderr)
+    assert "Traceback" not in result.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["answers.txt"]

@@ -7,17 +7,18 @@ import subprocess
 
 import pytest
 
-from rfc.lower.netlist import EntityDecl, Mode, Netlist, NetlistError, PortDecl, constant
+from rfc.lib.converters.ports import Direction
+from rfc.lower.netlist import EntityDecl, Netlist, NetlistError, PortDecl, constant
 from rfc.toolchain import analyze, convert_myhdl, start_new_design
 from tests.toolchain.counter import counter_instance
 
 COUNTER = EntityDecl(
     "counter8",
     (
-        PortDecl("clk", Mode.IN, 1, wire=True),
-        PortDecl("rst", Mode.IN, 1, wire=True),
-        PortDecl("enable", Mode.IN, 1, wire=True),
-        PortDecl("count", Mode.OUT, 8),
+        PortDecl("clk", Direction.IN, 1, wire=True),
+        PortDecl("rst", Direction.IN, 1, wire=True),
+        PortDecl("enable", Direction.IN, 1, wire=True),
+        PortDecl("count", Direction.OUT, 8),
     ),
 )
 
@@ -27,9 +28,9 @@ def two_counters():
         EntityDecl(
             "pair",
             (
-                PortDecl("clk", Mode.IN, 1, wire=True),
-                PortDecl("resetn", Mode.IN, 1, wire=True),
-                PortDecl("counts", Mode.OUT, 16),
+                PortDecl("clk", Direction.IN, 1, wire=True),
+                PortDecl("resetn", Direction.IN, 1, wire=True),
+                PortDecl("counts", Direction.OUT, 16),
             ),
         ),
         comment="two counters side by side",
@@ -87,7 +88,7 @@ def test_two_drivers_and_undriven_bits_are_refused():
     top.assign(top.port("counts").slice(3, 0), constant(0, 4))
     with pytest.raises(NetlistError, match=r"counts\(0\) driven by counter_0.count and"):
         top.check()
-    lonely = Netlist(EntityDecl("lonely", (PortDecl("o", Mode.OUT, 2),)))
+    lonely = Netlist(EntityDecl("lonely", (PortDecl("o", Direction.OUT, 2),)))
     with pytest.raises(NetlistError, match=r"o\(0\) has no driver"):
         lonely.render()
 
@@ -127,7 +128,8 @@ def test_verilog_keywords_are_escaped_so_every_tool_sees_the_same_name(tmp_path)
     files = convert_myhdl(counter_instance(), "counter8", tmp_path)
     top = Netlist(
         EntityDecl(
-            "keywords", (PortDecl("clk", Mode.IN, 1, wire=True), PortDecl("reg", Mode.OUT, 8))
+            "keywords",
+            (PortDecl("clk", Direction.IN, 1, wire=True), PortDecl("reg", Direction.OUT, 8)),
         )
     )
     wire = top.signal("wire", wire=True)

@@ -7,8 +7,9 @@ from pathlib import Path
 import pytest
 from myhdl import ResetSignal, Signal, always_comb, block, intbv
 
+from rfc.lib.converters.ports import Direction
 from rfc.lower.block_design import block_design
-from rfc.lower.netlist import EntityDecl, Mode, Netlist, NetlistError, PortDecl, constant
+from rfc.lower.netlist import EntityDecl, Netlist, NetlistError, PortDecl, constant
 from rfc.lower.vivado import VivadoProject, vivado_artifacts
 from rfc.toolchain import convert_myhdl, start_new_design
 from tests.support.vendor_check import check_vivado, run_script
@@ -48,7 +49,7 @@ def echo(
 
 
 def _stream(prefix, mode_in):
-    into, out = (Mode.IN, Mode.OUT) if mode_in else (Mode.OUT, Mode.IN)
+    into, out = (Direction.IN, Direction.OUT) if mode_in else (Direction.OUT, Direction.IN)
     return (
         PortDecl(f"{prefix}_tdata", into, WIDTH),
         PortDecl(f"{prefix}_tkeep", into, WIDTH // 8),
@@ -61,12 +62,12 @@ def _stream(prefix, mode_in):
 ECHO = EntityDecl(
     "echo",
     (
-        PortDecl("clk", Mode.IN, 1, wire=True),
-        PortDecl("rst", Mode.IN, 1, wire=True),
-        PortDecl("enable", Mode.IN, 1, wire=True),
+        PortDecl("clk", Direction.IN, 1, wire=True),
+        PortDecl("rst", Direction.IN, 1, wire=True),
+        PortDecl("enable", Direction.IN, 1, wire=True),
         *_stream("s_axis_mm2s", True),
         *_stream("m_axis_s2mm", False),
-        PortDecl("seen", Mode.OUT, 1, wire=True),
+        PortDecl("seen", Direction.OUT, 1, wire=True),
     ),
 )
 
@@ -76,8 +77,8 @@ def system_netlist():
         EntityDecl(
             "system_pl",
             (
-                PortDecl("aclk", Mode.IN, 1, wire=True),
-                PortDecl("aresetn", Mode.IN, 1, wire=True),
+                PortDecl("aclk", Direction.IN, 1, wire=True),
+                PortDecl("aresetn", Direction.IN, 1, wire=True),
                 *_stream("s_axis_mm2s", True),
                 *_stream("m_axis_s2mm", False),
             ),
@@ -129,7 +130,7 @@ def test_block_design_follows_the_netlist():
 def test_a_top_level_output_only_one_cell_drives_is_left_out_of_the_block_design():
     top = system_netlist()
     status = Netlist(
-        EntityDecl("system_pl", (*top.entity.ports, PortDecl("status", Mode.OUT, 1, True)))
+        EntityDecl("system_pl", (*top.entity.ports, PortDecl("status", Direction.OUT, 1, True)))
     )
     rst = status.signal("rst", wire=True)
     status.assign(rst, "not aresetn")

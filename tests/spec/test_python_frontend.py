@@ -85,6 +85,15 @@ def test_selections_on_either_side_of_the_arrow():
     assert expanded.fields == ("x", "y")
 
 
+def test_include_and_exclude_chain_on_one_source():
+    project, sub, acc, pub = quaternion_project()
+    sub.include("x", "y").include("z").exclude("z") >> acc
+    acc >> pub
+    first = project.design().connections[0]
+    assert (first.include, first.exclude) == (("x", "y", "z"), ("z",))
+    assert run_pipeline(project.design()).connections[0].fields == ("x", "y")
+
+
 def test_connect_is_the_long_form_of_the_arrow():
     project, sub, acc, pub = quaternion_project()
     project.connect(sub, acc, exclude=["w"])

@@ -29,7 +29,7 @@ from rfc.ir.model import AcceleratorKind, AcceleratorType, Block
 from rfc.lib.converters.ports import Direction, Port, PortRole
 from rfc.lib.hls.adapter import AdapterShape, StreamPort
 from rfc.lib.interface import typed_block
-from rfc.lower.netlist import EntityDecl, Mode, PortDecl
+from rfc.lower.netlist import EntityDecl, PortDecl
 from rfc.lower.system.components import (
     Component,
     adapter_component,
@@ -51,18 +51,26 @@ from rfc.user_code import running_user_code
 
 #: The Vitis HLS cores' control ports (``ap_ctrl_hs``).
 _HLS_CONTROL = (
-    PortDecl("ap_clk", Mode.IN, 1, True),
-    PortDecl("ap_rst", Mode.IN, 1, True),
-    PortDecl("ap_start", Mode.IN, 1, True),
-    PortDecl("ap_done", Mode.OUT, 1, True),
-    PortDecl("ap_idle", Mode.OUT, 1, True),
-    PortDecl("ap_ready", Mode.OUT, 1, True),
+    PortDecl("ap_clk", Direction.IN, 1, True),
+    PortDecl("ap_rst", Direction.IN, 1, True),
+    PortDecl("ap_start", Direction.IN, 1, True),
+    PortDecl("ap_done", Direction.OUT, 1, True),
+    PortDecl("ap_idle", Direction.OUT, 1, True),
+    PortDecl("ap_ready", Direction.OUT, 1, True),
 )
 #: A core's ap_fifo ports, for an output stream (True) and an input one: (suffix, the core's
 #: mode, whether it carries an element rather than one bit).
 _FIFO_PORTS = {
-    True: (("din", Mode.OUT, True), ("full_n", Mode.IN, False), ("write", Mode.OUT, False)),
-    False: (("dout", Mode.IN, True), ("empty_n", Mode.IN, False), ("read", Mode.OUT, False)),
+    True: (
+        ("din", Direction.OUT, True),
+        ("full_n", Direction.IN, False),
+        ("write", Direction.OUT, False),
+    ),
+    False: (
+        ("dout", Direction.IN, True),
+        ("empty_n", Direction.IN, False),
+        ("read", Direction.OUT, False),
+    ),
 }
 #: Prefix of the ap_ctrl wrapper's inputs from the core's outputs.
 _CORE_SIDE = "core_"
@@ -136,8 +144,8 @@ def entity_name(accelerator: AcceleratorType) -> str:
 
 def _convention(ports: Mapping[str, tuple[Pin, ...]]) -> list[PortDecl]:
     return [
-        PortDecl(CLOCK, Mode.IN, 1, True),
-        PortDecl(RESET, Mode.IN, 1, True),
+        PortDecl(CLOCK, Direction.IN, 1, True),
+        PortDecl(RESET, Direction.IN, 1, True),
         *(pin.port for pins in ports.values() for pin in pins),
     ]
 
@@ -178,7 +186,10 @@ def _myhdl(
     inputs = [
         p
         for p in ports
-        if any(pin.port.mode is Mode.IN and pin.role_name == f"{MESSAGE}_valid" for pin in ports[p])
+        if any(
+            pin.port.mode is Direction.IN and pin.role_name == f"{MESSAGE}_valid"
+            for pin in ports[p]
+        )
     ]
     outputs = [p for p in ports if p not in inputs]
 
@@ -205,7 +216,7 @@ def _check_driven(
     modes = dict(_PORT_MODE.findall(entity))
     for port, pins in ports.items():
         for pin in pins:
-            if pin.port.mode is Mode.OUT and modes.get(pin.port.name) != "out":
+            if pin.port.mode is Direction.OUT and modes.get(pin.port.name) != "out":
                 member = port + "".join(
                     f"[{step}]" if isinstance(step, int) else f".{step}"
                     for step in pin.signal.member
@@ -221,7 +232,7 @@ def _check_driven(
 
 def _signal_port(declared: PortDecl) -> Port:
     """A converter-convention port for `port_signals`: wires become bool signals."""
-    direction = Direction.IN if declared.mode is Mode.IN else Direction.OUT
+    direction = Direction.IN if declared.mode is Direction.IN else Direction.OUT
     if declared.name == RESET:
         role = PortRole.RESET
     elif declared.wire:
@@ -315,8 +326,8 @@ class _HlsWiring:
         held = f"{_CORE_SIDE}{name}"  # the wrapper's name: a member's may be the field's
         if port.output:
             self.core += [
-                PortDecl(name, Mode.OUT, bits),
-                PortDecl(f"{name}_ap_vld", Mode.OUT, 1, True),
+                PortDecl(name, Direction.OUT, bits),
+                PortDecl(f"{name}_ap_vld", Direction.OUT, 1, True),
             ]
             self.outputs.setdefault(port.message_port, []).append(
                 (pin.port.name, held, port.bits, bits)
@@ -327,12 +338,12 @@ class _HlsWiring:
             ]
             self.pins[(port.message_port, pin.role_name)] = ("control", pin.port.name)
         elif port.length:  # widened to the core's uint32_t by the wrapper
-            self.core.append(PortDecl(name, Mode.IN, bits))
+            self.core.append(PortDecl(name, Direction.IN, bits))
             self.lengths.append((pin.port.name, held, port.bits, bits))
             self.wires.append(("control", held, "core", name))
             self.pins[(port.message_port, pin.role_name)] = ("control", pin.port.name)
         else:
-            self.core.append(PortDecl(name, Mode.IN, bits))
+            self.core.append(PortDecl(name, Direction.IN, bits))
             self.pins[(port.message_port, pin.role_name)] = ("core", name)
 
     def add_stream(self, stream: CoreStream) -> None:
@@ -347,7 +358,7 @@ class _HlsWiring:
                 PortDecl(f"{arg}_{suffix}", mode, stream.element if data else 1, not data)
             )
             core, wrapper = ("core", f"{arg}_{suffix}"), ("control", f"{held}_{suffix}")
-            self.wires.append((*core, *wrapper) if mode is Mode.OUT else (*wrapper, *core))
+            self.wires.append((*core, *wrapper) if mode is Direction.OUT else (*wrapper, *core))
 
 
 def _stream_in(stream: CoreStream | None) -> StreamPort | None:

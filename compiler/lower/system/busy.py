@@ -15,10 +15,9 @@ from collections.abc import Mapping
 from pathlib import Path
 
 from rfc.ir.model import BlockKind, Design
-from rfc.ir.model import Direction as PortDirection
 from rfc.lib.busy import busy_body
 from rfc.lib.converters.ports import Direction, Port, PortRole
-from rfc.lower.netlist import Mode, Net, PortDecl, constant
+from rfc.lower.netlist import Net, PortDecl, constant
 from rfc.lower.system.components import Component, convert
 from rfc.lower.system.interfaces import MESSAGE
 from rfc.lower.system.top import Interface, Terminal, TopBuilder
@@ -40,7 +39,7 @@ def watched_blocks(design: Design) -> tuple[str, ...]:
         block.name
         for block in design.blocks_of(BlockKind.ACCELERATOR)
         if block.name not in infrastructure.software
-        and {port.direction for port in block.ports} == set(PortDirection)
+        and {port.direction for port in block.ports} == set(Direction)
     ]
     return (*accelerators, *(converter.block for converter in infrastructure.publishers))
 
@@ -48,7 +47,7 @@ def watched_blocks(design: Design) -> tuple[str, ...]:
 def busy_port(design: Design) -> tuple[PortDecl, ...]:
     """The top level's ``busy`` port, or none when nothing is watched."""
     count = len(watched_blocks(design))
-    return (PortDecl(BUSY, Mode.OUT, count),) if count else ()
+    return (PortDecl(BUSY, Direction.OUT, count),) if count else ()
 
 
 def watch_blocks(
@@ -97,7 +96,7 @@ def _accelerator(
     for port in block.ports:
         pins = interfaces[(name, port.name)]
         valid, ready = (_net(builder, pins[f"{MESSAGE}_{s}"]) for s in ("valid", "ready"))
-        if port.direction is PortDirection.IN:
+        if port.direction is Direction.IN:
             inputs.append((valid, ready))
         else:
             outputs.append((valid, ready, constant(1, 1, wire=True)))

@@ -14,15 +14,16 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from rfc.errors import located
 from rfc.ir.infrastructure import Converter, Scheduler
 from rfc.ir.model import BlockKind, Connection, Design
 from rfc.lib.converters.buffers import Buffer
 from rfc.lib.converters.malformed import DROP_REASONS, status_port
 from rfc.lib.converters.plan import accelerator_ports
-from rfc.lib.converters.ports import COUNTER_BITS, Side
+from rfc.lib.converters.ports import COUNTER_BITS, Direction, Side
 from rfc.lib.manager.entity import ManagerShape
 from rfc.lib.schedulers.spec import DEFAULT_IDLE, AnySchedulerSpec, SchedulerSpec
-from rfc.lower.netlist import EntityDecl, Mode, Netlist, PortDecl, constant
+from rfc.lower.netlist import EntityDecl, Netlist, PortDecl, constant
 from rfc.lower.system.accelerators import AcceleratorHardware, HlsCore, accelerator_hardware
 from rfc.lower.system.busy import busy_port, watch_blocks, watched_blocks
 from rfc.lower.system.components import (
@@ -38,7 +39,7 @@ from rfc.lower.system.slices import RegisterSlices
 from rfc.lower.system.stream_marks import StreamMarks
 from rfc.lower.system.top import CLOCK, RESET_N, Interface, Terminal, TopBuilder, wire_connection
 from rfc.messages.limits import Limits
-from rfc.passes.check_hardware import check_buffer_memory, record_first
+from rfc.passes.check_hardware import check_buffer_memory, converter_location, record_first
 from rfc.passes.names import snake_identifier as identifier
 from rfc.passes.resolve_scheduler import ResolveScheduler
 
@@ -167,22 +168,25 @@ def generate_system(
             streamed_through = side is Side.PUBLISHER and record_first(design, converter)
             if streamed_through:
                 record_first_publishers.add(converter.block)
-            component = converter_component(
-                converter, side, directory, f"{label}_{side.value}", limits, streamed_through
-            )
+            where = converter_location(design, converter)
+            with located(where):
+                component = converter_component(
+                    converter, side, directory, f"{label}_{side.value}", limits, streamed_through
+                )
+                pins = accelerator_ports(converter.layout, width, side, limits)
             components.append(component)
             if component.buffers:
                 buffers[converter.block] = component.buffers
             builder.cell(label, component.entity)
-            pins = accelerator_ports(converter.layout, width, side, limits)
             interface = {p.name: Terminal(label, p.name) for p in pins}
             if side is Side.PUBLISHER:
                 _wire_dma(builder, label, converter, side)
                 interfaces[(converter.block, "in0")] = interface
                 continue
-            interfaces[(converter.block, "out0")] = guards.protect(
-                builder, label, converter, interface, _wire_dma
-            )
+            with located(where):
+                interfaces[(converter.block, "out0")] = guards.protect(
+                    builder, label, converter, interface, _wire_dma
+                )
     guards.dma_input(builder, Terminal(MANAGER, MM2S))  # through a header tap if a guard needs it
     components += guards.components
     buffers |= guards.buffers
@@ -193,7 +197,8 @@ def generate_system(
             continue
         accelerator = design.accelerator(block.accelerator or "")
         if accelerator.name not in hardware_types:
-            hardware = accelerator_hardware(accelerator, block, width, limits, directory)
+            with located(accelerator.location):
+                hardware = accelerator_hardware(accelerator, block, width, limits, directory)
             hardware_types[accelerator.name] = hardware
             components += hardware.components
         hardware = hardware_types[accelerator.name]
@@ -217,21 +222,24 @@ def generate_system(
     for origin, connections in by_source.items():
         targets = [interfaces[(c.destination.block, c.destination.port or "")] for c in connections]
         what = f"connection {connections[0].source} → {connections[0].destination}"
-        if len(targets) == 1:
-            complete = marks.complete(
-                builder, design, connections[0], interfaces[origin], targets[0]
-            )
-            into = connections[0].destination
-            label = f"{identifier(into.block)}_{identifier(into.port or 'in')}_slice"
-            sliced = slices.insert(
-                builder, targets[0], label, streams=into.block not in record_first_publishers
-            )
-            wire_connection(builder, complete, sliced, what)
-            continue
-        if len(targets) not in forks:
-            forks[len(targets)] = fork_component(len(targets), directory, f"rfc_fork{len(targets)}")
-            components.append(forks[len(targets)])
-        _fan_out(builder, interfaces[origin], targets, forks[len(targets)].entity, what)
+        with located(connections[0].location):
+            if len(targets) == 1:
+                complete = marks.complete(
+                    builder, design, connections[0], interfaces[origin], targets[0]
+                )
+                into = connections[0].destination
+                label = f"{identifier(into.block)}_{identifier(into.port or 'in')}_slice"
+                sliced = slices.insert(
+                    builder, targets[0], label, streams=into.block not in record_first_publishers
+                )
+                wire_connection(builder, complete, sliced, what)
+                continue
+            if len(targets) not in forks:
+                forks[len(targets)] = fork_component(
+                    len(targets), directory, f"rfc_fork{len(targets)}"
+                )
+                components.append(forks[len(targets)])
+            _fan_out(builder, interfaces[origin], targets, forks[len(targets)].entity, what)
 
     components += marks.components
     components += slices.components
@@ -266,9 +274,9 @@ def generate_system(
 
 def _top_entity(design: Design) -> EntityDecl:
     width = design.project.bus_width
-    ports = [PortDecl(CLOCK, Mode.IN, 1, True), PortDecl(RESET_N, Mode.IN, 1, True)]
+    ports = [PortDecl(CLOCK, Direction.IN, 1, True), PortDecl(RESET_N, Direction.IN, 1, True)]
     for group, into in ((MM2S, True), (S2MM, False)):
-        data, back = (Mode.IN, Mode.OUT) if into else (Mode.OUT, Mode.IN)
+        data, back = (Direction.IN, Direction.OUT) if into else (Direction.OUT, Direction.IN)
         ports += [
             PortDecl(f"{group}_tdata", data, width),
             PortDecl(f"{group}_tkeep", data, width // 8),
@@ -279,7 +287,7 @@ def _top_entity(design: Design) -> EntityDecl:
     assert design.infrastructure is not None
     for converter in design.infrastructure.subscribers:
         ports += [
-            PortDecl(status_port(converter.id, reason), Mode.OUT, COUNTER_BITS)
+            PortDecl(status_port(converter.id, reason), Direction.OUT, COUNTER_BITS)
             for reason in DROP_REASONS
         ]
     ports += busy_port(design)
@@ -329,7 +337,7 @@ def _tie_unused_readies(builder: TopBuilder) -> None:
     for label, entity in builder.cells():
         for port in entity.ports:
             terminal = Terminal(label, port.name)
-            unused = port.mode is Mode.IN and port.wire and port.name.endswith("ready")
+            unused = port.mode is Direction.IN and port.wire and port.name.endswith("ready")
             if unused and not builder.driven(terminal):
                 builder.connect(terminal, constant(1, 1, wire=True))
 

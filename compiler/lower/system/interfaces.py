@@ -10,7 +10,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from rfc.ir.model import Direction as PortDirection
 from rfc.ir.model import Port as ModelPort
 from rfc.lib.converters.plan import plan
 from rfc.lib.converters.ports import (
@@ -22,7 +21,7 @@ from rfc.lib.converters.ports import (
     ports_of,
 )
 from rfc.lib.converters.steps import ROOT
-from rfc.lower.netlist import Mode, PortDecl
+from rfc.lower.netlist import PortDecl
 from rfc.messages.limits import Limits
 
 #: The converter-side name of the message handshake.
@@ -53,7 +52,7 @@ class Pin:
 def declaration(port: Port, name: str | None = None, mirrored: bool = False) -> PortDecl:
     """The netlist declaration of a converter-convention port."""
     into = port.direction is Direction.IN
-    mode = Mode.IN if into != mirrored else Mode.OUT
+    mode = Direction.IN if into != mirrored else Direction.OUT
     return PortDecl(name or port.name, mode, port.bits, port.is_wire)
 
 
@@ -66,7 +65,7 @@ def accelerator_pins(port: ModelPort, width: int, limits: Limits) -> tuple[Pin, 
         limits: Maxima of strings and sequences (they set length port widths).
     """
     assert port.layout is not None
-    side = Side.SUBSCRIBER if port.direction is PortDirection.IN else Side.PUBLISHER
+    side = Side.SUBSCRIBER if port.direction is Direction.IN else Side.PUBLISHER
     chosen = plan(port.layout, width, limits)
     signature = accelerator_signature(chosen, side, port.name)
     names = {p.member: p.name for p in ports_of(chosen, side)}

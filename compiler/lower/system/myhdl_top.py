@@ -15,7 +15,8 @@ from typing import Any
 
 from myhdl import ConcatSignal, ResetSignal, Signal, always_comb, block, intbv
 
-from rfc.lower.netlist import Mode, Net, Netlist
+from rfc.lib.converters.ports import Direction
+from rfc.lower.netlist import Net, Netlist
 from rfc.lower.system.top import RESET
 
 Block = Callable[..., Any]
@@ -104,7 +105,7 @@ class _Wiring:
             net
             for _, entity, connections in self.netlist.instances()
             for port in entity.ports
-            if port.mode is Mode.OUT and (net := connections[port.name]) is not None
+            if port.mode is Direction.OUT and (net := connections[port.name]) is not None
         ]
         return nets + [target for target, _ in self.netlist.assignments()]
 
@@ -153,7 +154,7 @@ class _Wiring:
                 net = connections[port.name]
                 if net is None:  # an open output
                     arguments[port.name] = _signal(port.bits, port.wire)
-                elif port.mode is Mode.OUT:
+                elif port.mode is Direction.OUT:
                     arguments[port.name] = self.write(net)
                 else:
                     arguments[port.name] = self.read(net)

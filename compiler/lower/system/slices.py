@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from rfc.lower.netlist import Mode
+from rfc.lib.converters.ports import Direction
 from rfc.lower.system.components import Component, slice_component
 from rfc.lower.system.interfaces import MESSAGE
 from rfc.lower.system.top import Interface, Terminal, TopBuilder
@@ -94,7 +94,7 @@ def _sliceable(builder: TopBuilder, target: Interface) -> bool:
     others = [n for n in target if n not in (_VALID, _READY)]
     if any(n.endswith(_HANDSHAKE_ENDINGS) for n in others):
         return False
-    return all(builder.port(target[n]).mode is Mode.IN for n in others)
+    return all(builder.port(target[n]).mode is Direction.IN for n in others)
 
 
 def _streams(builder: TopBuilder, target: Interface) -> list[str]:
@@ -108,9 +108,9 @@ def _streams(builder: TopBuilder, target: Interface) -> list[str]:
         for stream in streams
         if f"{stream}_tdata" in target
         and f"{stream}{_TREADY}" in target
-        and builder.port(target[f"{stream}{_TREADY}"]).mode is Mode.OUT
+        and builder.port(target[f"{stream}{_TREADY}"]).mode is Direction.OUT
         and all(
-            builder.port(target[f"{stream}{suffix}"]).mode is Mode.IN
+            builder.port(target[f"{stream}{suffix}"]).mode is Direction.IN
             for suffix in (*_BEAT, _TVALID)
             if f"{stream}{suffix}" in target
         )

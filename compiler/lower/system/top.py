@@ -12,7 +12,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 
 from rfc.errors import RfcError
-from rfc.lower.netlist import EntityDecl, Mode, Net, Netlist, NetlistError, PortDecl
+from rfc.lib.converters.ports import Direction
+from rfc.lower.netlist import EntityDecl, Net, Netlist, NetlistError, PortDecl
 
 #: The top level's clock, active-low reset and derived active-high reset.
 CLOCK, RESET_N, RESET = "aclk", "aresetn", "rst"
@@ -21,6 +22,7 @@ CLOCK_PORTS = frozenset({"clk", "ap_clk"})
 RESET_PORTS = frozenset({"rst", "ap_rst"})
 
 
+# Two names and a __str__, like rfc.cluster.Failure in shape only: a cell's port, not a job.
 @dataclass(frozen=True)
 class Terminal:
     """A port of a cell: ``(cell label, port name)``."""
@@ -70,7 +72,7 @@ class TopBuilder:
     def output(self, terminal: Terminal) -> Net:
         """The net a cell's output drives (declared on first use)."""
         port = self.port(terminal)
-        if port.mode is not Mode.OUT:
+        if port.mode is not Direction.OUT:
             raise NetlistError(f"{terminal} is an input")
         connections = self._connections[terminal.cell]
         if connections.get(terminal.port) is None:
@@ -82,7 +84,7 @@ class TopBuilder:
 
     def net(self, terminal: Terminal) -> Net | None:
         """The net on a cell's port: an output's (declared on first use), else what drives it."""
-        if self.port(terminal).mode is Mode.OUT:
+        if self.port(terminal).mode is Direction.OUT:
             return self.output(terminal)
         return self._connections[terminal.cell].get(terminal.port)
 
@@ -140,7 +142,7 @@ def wire_connection(
                 f"{what}: the destination needs '{name}', which the source does not provide",
                 hint="select the field on both sides of the connection",
             )
-        if builder.port(terminal).mode is Mode.IN:
+        if builder.port(terminal).mode is Direction.IN:
             builder.wire(partner, terminal)
         else:
             builder.wire(terminal, partner)

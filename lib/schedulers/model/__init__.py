@@ -27,9 +27,8 @@ from rfc.lib.schedulers.spec import (
     AnySchedulerSpec,
     CompositionSpec,
     SchedulerSpec,
-    check_counter_bits,
     check_inputs,
-    default_counter_bits,
+    counter_bits_for,
     parse_algorithm,
 )
 
@@ -87,6 +86,7 @@ def make_model(
     )
 
 
+# `make_model`'s arguments: it wraps this tree in a model.
 def leaf_tree(
     algorithm: str | Algorithm,
     n: int,
@@ -104,9 +104,7 @@ def leaf_tree(
         deadline = transfers + DEFAULT_IDLE
     deadlines = _timing(deadline, n, batch, "the deadline")
     flat_t, flat_d = [int(transfers.max())], [int(deadlines.max())]
-    bits = default_counter_bits(flat_t, flat_d) if counter_bits is None else counter_bits
-    check_counter_bits(bits, flat_t, flat_d)
-    return tree.leaf(chosen, transfers, deadlines, bits)
+    return tree.leaf(chosen, transfers, deadlines, counter_bits_for(flat_t, flat_d, counter_bits))
 
 
 def compose_models(

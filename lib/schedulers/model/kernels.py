@@ -408,6 +408,7 @@ def work_arrays(nodes: int, flat: int, widest: int) -> tuple[Work, Scratch]:
     return work, scratch
 
 
+# `tree_cycle`'s arguments, for every replicate of the batch at once.
 @kernel
 def step_batch(
     tree: Structure,

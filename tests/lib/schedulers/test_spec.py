@@ -1,9 +1,15 @@
-"""How a composition's name shares the inputs among its children (`parse_scheduler`)."""
+"""A scheduler spec: how a composition shares the inputs, and the timing its counters hold."""
 
 import pytest
 
 from rfc.errors import RfcError
-from rfc.lib.schedulers.spec import parse_scheduler
+from rfc.lib.schedulers.spec import (
+    COUNTER_HEADROOM_BITS,
+    MAX_COUNTER_BITS,
+    MAX_TIMING,
+    SchedulerSpec,
+    parse_scheduler,
+)
 
 
 def _sizes(text: str, n: int) -> list[int]:
@@ -40,3 +46,22 @@ def test_a_nested_composition_shares_its_own_share() -> None:
 def test_sizes_that_do_not_add_up_are_refused(text: str, n: int) -> None:
     with pytest.raises(RfcError, match=f"must share the {n} inputs"):
         parse_scheduler(text, n)
+
+
+@pytest.mark.parametrize("algorithm", ["LOEDF", "LST"])
+def test_the_longest_deadline_fits_the_default_counters_with_their_headroom(algorithm: str) -> None:
+    # The counters are biased by H = 2^(bits-1) and must hold D + T below it, with
+    # COUNTER_HEADROOM_BITS more than the largest constant needs (room for lateness).
+    spec = SchedulerSpec.create(algorithm, 2, [1, MAX_TIMING], [MAX_TIMING, MAX_TIMING])
+    assert spec.counter_bits <= MAX_COUNTER_BITS
+    assert 1 << (spec.counter_bits - 1) > MAX_TIMING + MAX_TIMING
+    assert 1 << (spec.counter_bits - 1 - COUNTER_HEADROOM_BITS) > MAX_TIMING
+
+
+@pytest.mark.parametrize(("transfer", "deadline"), [(5, MAX_TIMING + 1), (MAX_TIMING + 1, 5)])
+def test_a_timing_beyond_the_widest_counters_is_refused_with_a_hint(
+    transfer: int, deadline: int
+) -> None:
+    with pytest.raises(RfcError, match="too long for the scheduler's 48-bit counters") as error:
+        SchedulerSpec.create("LOEDF", 1, transfer, deadline)
+    assert error.value.hint == f"give a deadline (or period) of at most {MAX_TIMING} cycles"

@@ -137,9 +137,12 @@ def test_an_hls_function_with_the_wrong_arguments_is_refused_at_its_line(tmp_pat
     assert "pass.cpp:1" in message
 
 
-def test_the_report_gives_latencies_against_targets_and_estimated_resources(tmp_path):
+def test_the_report_gives_latencies_against_targets_and_estimated_resources(
+    tmp_path, synthesis_cache
+):
     spec = write_spec(tmp_path, fan_out(), pass__py=PASS_THROUGH)  # LST
-    result = run_rfc("build", spec, "-o", tmp_path / "build", "--estimate", cwd=ROOT)
+    cache = {"RFC_CACHE_DIR": str(synthesis_cache)}  # the session's, not the user's ~/.cache
+    result = run_rfc("build", spec, "-o", tmp_path / "build", "--estimate", cwd=ROOT, env=cache)
     assert result.returncode == 0, result.stderr
     report = (tmp_path / "build/report.md").read_text()
     rows = {
@@ -156,9 +159,10 @@ def test_the_report_gives_latencies_against_targets_and_estimated_resources(tmp_
     assert 100 < lut < 5000
 
 
-def test_estimating_a_logic_with_hls_cores_is_refused(tmp_path):
+def test_estimating_a_logic_with_hls_cores_is_refused(tmp_path, synthesis_cache):
     spec = ROOT / "examples/rotation_converter/RotationConverterNode.yaml"
-    result = run_rfc("build", spec, "-o", tmp_path / "b", "--estimate", cwd=ROOT)
+    cache = {"RFC_CACHE_DIR": str(synthesis_cache)}
+    result = run_rfc("build", spec, "-o", tmp_path / "b", "--estimate", cwd=ROOT, env=cache)
     assert result.returncode == 1
     assert "its HLS cores come from Vitis HLS" in result.stderr
     assert not (tmp_path / "b").exists()

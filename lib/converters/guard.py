@@ -31,7 +31,8 @@ from rfc.lib.converters.ram import ram
 from rfc.lib.converters.steps import Plan
 from rfc.lib.converters.subscriber import rfc_subscriber
 from rfc.lib.converters.toplevel import port_signals
-from rfc.lib.slice import parts_slice
+from rfc.lib.slice import SliceSide, parts_slice
+from rfc.lib.types import SignalLike
 
 #: A stream's signals, by the suffix of their ports' names.
 STREAM = ("tdata", "tkeep", "tvalid", "tready", "tlast")
@@ -94,24 +95,11 @@ def frame_guard(plan: Plan, depth: int, **ports: Any) -> Any:
     c_valid, c_ready = Signal(bool(0)), Signal(bool(0))
     drop, reason = Signal(bool(0)), Signal(intbv(0)[REASON_BITS:])
 
-    checker = port_signals(ports_of(plan, Side.SUBSCRIBER))
-    readies = [checker[p.name] for p in ports_of(plan, Side.SUBSCRIBER) if p.direction is
-               Direction.IN]  # fmt: skip
+    checker, readies = checker_signals(plan)
     verdict, failed = checker["msg_valid"], checker["msg_error"]
     cause = Signal(intbv(0)[REASON_BITS:])
-    parser = rfc_subscriber(
-        plan,
-        clk=clk,
-        rst=rst,
-        s_axis_tdata=s_tdata,
-        s_axis_tkeep=s_tkeep,
-        s_axis_tvalid=c_valid,
-        s_axis_tready=c_ready,
-        s_axis_tlast=s_tlast,
-        error_count=Signal(intbv(0)[COUNTER_BITS:]),
-        error_reason=cause,
-        **checker,
-    )
+    inputs = (s_tdata, s_tkeep, c_valid, c_ready, s_tlast)
+    parser = rfc_subscriber(plan, **checker_ports(clk, rst, inputs, cause, checker))
     storing, waiting, sending = int(_State.STORE), int(_State.VERDICT), int(_State.SEND)
     maximum = int(Reason.MAXIMUM)
 
@@ -185,6 +173,48 @@ def frame_guard(plan: Plan, depth: int, **ports: Any) -> Any:
     return parser, take, give, control, memory, counters, held, out
 
 
+def checker_signals(plan: Plan) -> tuple[dict[str, SignalLike], list[SignalLike]]:
+    """A guard's checker's port signals by name, and those of them its consumer drives.
+
+    The checker is a second subscriber of `plan` whose every output is taken at once (the
+    guard holds those inputs high, `held_high`): only its record's verdict counts.
+    """
+    ports = ports_of(plan, Side.SUBSCRIBER)
+    checker = port_signals(ports)
+    return checker, [checker[p.name] for p in ports if p.direction is Direction.IN]
+
+
+def checker_ports(
+    clk: SignalLike,
+    rst: SignalLike,
+    stream: tuple[SignalLike, ...],
+    cause: SignalLike,
+    checker: dict[str, SignalLike],
+) -> dict[str, SignalLike]:
+    """Every port of a guard's checker: the frame's `stream` in, its reason out on `cause`.
+
+    Args:
+        clk: Clock.
+        rst: The checker's reset.
+        stream: The frame as the checker reads it: tdata, tkeep, tvalid, tready, tlast.
+        cause: The checker's ``error_reason``.
+        checker: The rest of its ports (`checker_signals`).
+    """
+    tdata, tkeep, tvalid, tready, tlast = stream
+    return {
+        "clk": clk,
+        "rst": rst,
+        "s_axis_tdata": tdata,
+        "s_axis_tkeep": tkeep,
+        "s_axis_tvalid": tvalid,
+        "s_axis_tready": tready,
+        "s_axis_tlast": tlast,
+        "error_count": Signal(intbv(0)[COUNTER_BITS:]),  # the guard counts by reason instead
+        "error_reason": cause,
+        **checker,
+    }
+
+
 @block
 def held_high(clk: Any, rst: Any, signal: Any) -> Any:
     """Hold `signal` at 1 (a register, so that no tool reads an initial value differently)."""
@@ -215,6 +245,5 @@ def registered_output(clk: Any, rst: Any, inner: tuple[Any, ...], outer: tuple[A
     """
     data, keep, valid, ready, last = inner
     m_data, m_keep, m_valid, m_ready, m_last = outer
-    return parts_slice(
-        clk, rst, [data, keep, last], valid, ready, [m_data, m_keep, m_last], m_valid, m_ready
-    )
+    source = SliceSide([data, keep, last], valid, ready)
+    return parts_slice(clk, rst, source, SliceSide([m_data, m_keep, m_last], m_valid, m_ready))

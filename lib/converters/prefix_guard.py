@@ -31,21 +31,20 @@ from myhdl import ResetSignal, Signal, always, always_comb, always_seq, block, i
 
 from rfc.lib.converters.chunk_length import LENGTH_BITS
 from rfc.lib.converters.frame_length import frame_length_circuit, length_formula
-from rfc.lib.converters.guard import STREAM, guard_ports, guard_stream, held_high, registered_output
-from rfc.lib.converters.malformed import DROP_REASONS, Reason, counter_name, reason_counter
-from rfc.lib.converters.ports import (
-    COUNTER_BITS,
-    REASON_BITS,
-    Direction,
-    Port,
-    PortRole,
-    Side,
-    ports_of,
+from rfc.lib.converters.guard import (
+    STREAM,
+    checker_ports,
+    checker_signals,
+    guard_ports,
+    guard_stream,
+    held_high,
+    registered_output,
 )
+from rfc.lib.converters.malformed import DROP_REASONS, Reason, counter_name, reason_counter
+from rfc.lib.converters.ports import REASON_BITS, Direction, Port, PortRole
 from rfc.lib.converters.ram import ram
 from rfc.lib.converters.steps import Payload, Plan
 from rfc.lib.converters.subscriber import rfc_subscriber
-from rfc.lib.converters.toplevel import port_signals
 
 #: The port giving the frame's size as the chunk header declared it.
 DECLARED = "frame_length"
@@ -104,25 +103,12 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
     c_rst = ResetSignal(rst.active, active=rst.active, isasync=rst.isasync)
     allowed = Signal(intbv(0)[LENGTH_BITS + 2 :])
 
-    checker = port_signals(ports_of(checking, Side.SUBSCRIBER))
-    readies = [checker[p.name] for p in ports_of(checking, Side.SUBSCRIBER)
-               if p.direction is Direction.IN]  # fmt: skip
+    checker, readies = checker_signals(checking)
     verdict, failed = checker["msg_valid"], checker["msg_error"]
     started = checker[f"{last.stream}_tvalid"]
     cause = Signal(intbv(0)[REASON_BITS:])
-    parser = rfc_subscriber(
-        checking,
-        clk=clk,
-        rst=c_rst,
-        s_axis_tdata=s_tdata,
-        s_axis_tkeep=s_tkeep,
-        s_axis_tvalid=c_valid,
-        s_axis_tready=c_ready,
-        s_axis_tlast=s_tlast,
-        error_count=Signal(intbv(0)[COUNTER_BITS:]),
-        error_reason=cause,
-        **checker,
-    )
+    inputs = (s_tdata, s_tkeep, c_valid, c_ready, s_tlast)
+    parser = rfc_subscriber(checking, **checker_ports(clk, c_rst, inputs, cause, checker))
     counts = {s.port: checker[s.port] for s in length_formula(checking).stages if s.port}
     size = Signal(intbv(0)[LENGTH_BITS + 2 :])
     sizing = frame_length_circuit(checking, counts, size)

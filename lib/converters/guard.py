@@ -17,22 +17,13 @@ from typing import Any
 
 from myhdl import Signal, always_comb, always_seq, block, intbv
 
+from rfc.lib.converters.checker import checker_ports, checker_signals
 from rfc.lib.converters.malformed import DROP_REASONS, Reason, counter_name, reason_counter
-from rfc.lib.converters.ports import (
-    COUNTER_BITS,
-    REASON_BITS,
-    Direction,
-    Port,
-    PortRole,
-    Side,
-    ports_of,
-)
+from rfc.lib.converters.ports import COUNTER_BITS, REASON_BITS, Direction, Port, PortRole
 from rfc.lib.converters.ram import ram
 from rfc.lib.converters.steps import Plan
 from rfc.lib.converters.subscriber import rfc_subscriber
-from rfc.lib.converters.toplevel import port_signals
 from rfc.lib.slice import SliceSide, parts_slice
-from rfc.lib.types import SignalLike
 
 #: A stream's signals, by the suffix of their ports' names.
 STREAM = ("tdata", "tkeep", "tvalid", "tready", "tlast")
@@ -76,9 +67,7 @@ def frame_guard(plan: Plan, depth: int, **ports: Any) -> Any:
         ports: One signal per name of `guard_ports`.
     """
     clk, rst = ports["clk"], ports["rst"]
-    s_tdata, s_tkeep, s_tvalid, s_tready, s_tlast = (
-        ports[f"s_axis_{n}"] for n in ("tdata", "tkeep", "tvalid", "tready", "tlast")
-    )
+    s_tdata, s_tkeep, s_tvalid, s_tready, s_tlast = (ports[f"s_axis_{n}"] for n in STREAM)
     m_tdata, m_tkeep, m_tvalid, m_tready, m_tlast = guard_stream(ports)
     outer = tuple(ports[f"m_axis_{n}"] for n in STREAM)
     full_keep = (1 << plan.width) - 1
@@ -171,48 +160,6 @@ def frame_guard(plan: Plan, depth: int, **ports: Any) -> Any:
     held = [held_high(clk, rst, ready) for ready in readies]  # the checker takes everything
     out = registered_output(clk, rst, (m_tdata, m_tkeep, m_tvalid, m_tready, m_tlast), outer)
     return parser, take, give, control, memory, counters, held, out
-
-
-def checker_signals(plan: Plan) -> tuple[dict[str, SignalLike], list[SignalLike]]:
-    """A guard's checker's port signals by name, and those of them its consumer drives.
-
-    The checker is a second subscriber of `plan` whose every output is taken at once (the
-    guard holds those inputs high, `held_high`): only its record's verdict counts.
-    """
-    ports = ports_of(plan, Side.SUBSCRIBER)
-    checker = port_signals(ports)
-    return checker, [checker[p.name] for p in ports if p.direction is Direction.IN]
-
-
-def checker_ports(
-    clk: SignalLike,
-    rst: SignalLike,
-    stream: tuple[SignalLike, ...],
-    cause: SignalLike,
-    checker: dict[str, SignalLike],
-) -> dict[str, SignalLike]:
-    """Every port of a guard's checker: the frame's `stream` in, its reason out on `cause`.
-
-    Args:
-        clk: Clock.
-        rst: The checker's reset.
-        stream: The frame as the checker reads it: tdata, tkeep, tvalid, tready, tlast.
-        cause: The checker's ``error_reason``.
-        checker: The rest of its ports (`checker_signals`).
-    """
-    tdata, tkeep, tvalid, tready, tlast = stream
-    return {
-        "clk": clk,
-        "rst": rst,
-        "s_axis_tdata": tdata,
-        "s_axis_tkeep": tkeep,
-        "s_axis_tvalid": tvalid,
-        "s_axis_tready": tready,
-        "s_axis_tlast": tlast,
-        "error_count": Signal(intbv(0)[COUNTER_BITS:]),  # the guard counts by reason instead
-        "error_reason": cause,
-        **checker,
-    }
 
 
 @block

@@ -20,7 +20,8 @@ from rfc.lib.converters.ports import COUNTER_BITS
 from rfc.lib.types import Instances, SignalLike
 
 
-# AXI-Stream out as `frame_buffer`'s, which it feeds: each block names its own ports.
+# AXI-Stream out as `frame_buffer`'s, as parameters: MyHDL declares the signals a process
+# reads in the order of its block's parameters, and a bundle would reorder the VHDL.
 @block
 def byte_packer(
     clk: SignalLike,

@@ -29,17 +29,10 @@ from typing import Any
 
 from myhdl import ResetSignal, Signal, always, always_comb, always_seq, block, intbv
 
+from rfc.lib.converters.checker import checker_ports, checker_signals
 from rfc.lib.converters.chunk_length import LENGTH_BITS
 from rfc.lib.converters.frame_length import frame_length_circuit, length_formula
-from rfc.lib.converters.guard import (
-    STREAM,
-    checker_ports,
-    checker_signals,
-    guard_ports,
-    guard_stream,
-    held_high,
-    registered_output,
-)
+from rfc.lib.converters.guard import STREAM, guard_ports, guard_stream, held_high, registered_output
 from rfc.lib.converters.malformed import DROP_REASONS, Reason, counter_name, reason_counter
 from rfc.lib.converters.ports import REASON_BITS, Direction, Port, PortRole
 from rfc.lib.converters.ram import ram
@@ -76,9 +69,7 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
         ports: One signal per name of `prefix_guard_ports`.
     """
     clk, rst = ports["clk"], ports["rst"]
-    s_tdata, s_tkeep, s_tvalid, s_tready, s_tlast = (
-        ports[f"s_axis_{n}"] for n in ("tdata", "tkeep", "tvalid", "tready", "tlast")
-    )
+    s_tdata, s_tkeep, s_tvalid, s_tready, s_tlast = (ports[f"s_axis_{n}"] for n in STREAM)
     m_tdata, m_tkeep, m_tvalid, m_tready, m_tlast = guard_stream(ports)
     outer = tuple(ports[f"m_axis_{n}"] for n in STREAM)
     header = ports[DECLARED]
@@ -122,6 +113,8 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
     storing, replaying, passing, dropping = (int(s) for s in _State)
     maximum, truncated, trailing = int(Reason.MAXIMUM), int(Reason.TRUNCATED), int(Reason.TRAILING)
 
+    # Addressing and output as `frame_guard`'s processes: MyHDL converts a process whole, so
+    # each guard's VHDL keeps its own.
     @always_comb
     def take() -> None:
         taking = state == storing and c_rst != c_rst.active and not ended
@@ -200,6 +193,7 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
         # the checker starts afresh for every frame (a register: no glitch reaches its reset)
         c_rst.next = rst == rst.active or state != storing or decided
 
+    # Three ways back to STORE clear the same registers: a process converts whole, no helper.
     @always_seq(clk.posedge, reset=rst)
     def control() -> None:
         if state == storing:

@@ -32,7 +32,7 @@ from rfc.lib.converters.ports import COUNTER_BITS, Side, count_bits, dma_ports, 
 from rfc.lib.converters.sources import payload_bases, payload_sources, record_sources
 from rfc.lib.converters.steps import End, Loop, Next, Payload, Plan, Record
 from rfc.lib.converters.tables import Kind, tables
-from rfc.lib.converters.wiring import bits_of, follow, loop_counters, select_bit
+from rfc.lib.converters.wiring import LoopControl, bits_of, follow, loop_counters, select_bit
 from rfc.lib.slice import register_slice
 from rfc.lib.types import Instances, SignalLike
 from rfc.messages.codec import default_values, encode
@@ -375,11 +375,8 @@ def rfc_publisher(
     if held:
         blocks.append(select_bit(bits_of(empties), tuple(held_table), pc, gone))
         blocks.append(anything_left(bits_of(empties[1:]), leftover))
-    blocks.append(
-        loop_counters(
-            plan, clk, rst, pc, count, load_loop, next_element, loop_counts, loop_more, more
-        )
-    )
+    loop_control = LoopControl(clk, rst, pc, count, load_loop, next_element)
+    blocks.append(loop_counters(plan, loop_control, loop_counts, loop_more, more))
     if fixed is None and not buffered:
         counts = {name: ports[name] for name in length_names}
         blocks.append(frame_length_circuit(plan, counts, frame_total))

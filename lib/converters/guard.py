@@ -109,6 +109,7 @@ def frame_guard(plan: Plan, depth: int, **ports: Any) -> Any:
         if failed:
             reason.next = cause
 
+    # Drives the output from this guard's registers, as the slice and the mux do from theirs.
     @always_comb
     def give() -> None:
         m_tdata.next = r_data

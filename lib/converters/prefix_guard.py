@@ -173,6 +173,7 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
             ok = True  # the checker's verdict, or a started frame of the declared size
         drop.next = judging and (verdict or was_started) and not ok
 
+    # `frame_guard`'s output, and the bus straight through while PASS: a process of its own.
     @always_comb
     def give() -> None:
         if state == passing:

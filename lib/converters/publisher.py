@@ -341,6 +341,7 @@ def rfc_publisher(
         else:
             gap_n.next = (int(gap) + 8 - step) % 8
 
+    # Latches the next values as the subscriber's `registers` does: a process converts whole.
     @always_seq(clk.posedge, reset=rst)
     def registers() -> None:
         pc.next = pc_n
@@ -474,6 +475,7 @@ def stream_ready(take: SignalLike, pc: SignalLike, at: int, ready: SignalLike) -
     return acknowledge
 
 
+# Compares with all ones where the manager's `spread_bit` drives them: another circuit.
 @block
 def anything_left(empties: SignalLike, left: SignalLike) -> Instances:
     """`left` while any of the FIFOs whose `empties` bits these are holds a beat."""

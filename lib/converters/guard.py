@@ -17,6 +17,7 @@ from typing import Any
 
 from myhdl import Signal, always_comb, always_seq, block, intbv
 
+from rfc.lib.axi_stream import STREAM
 from rfc.lib.converters.checker import checker_ports, checker_signals
 from rfc.lib.converters.malformed import DROP_REASONS, Reason, counter_name, reason_counter
 from rfc.lib.converters.ports import COUNTER_BITS, REASON_BITS, Direction, Port, PortRole
@@ -24,9 +25,6 @@ from rfc.lib.converters.ram import ram
 from rfc.lib.converters.steps import Plan
 from rfc.lib.converters.subscriber import rfc_subscriber
 from rfc.lib.slice import SliceSide, parts_slice
-
-#: A stream's signals, by the suffix of their ports' names.
-STREAM = ("tdata", "tkeep", "tvalid", "tready", "tlast")
 
 
 class _State(IntEnum):

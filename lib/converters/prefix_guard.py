@@ -29,10 +29,11 @@ from typing import Any
 
 from myhdl import ResetSignal, Signal, always, always_comb, always_seq, block, intbv
 
+from rfc.lib.axi_stream import STREAM
 from rfc.lib.converters.checker import checker_ports, checker_signals
 from rfc.lib.converters.chunk_length import LENGTH_BITS
 from rfc.lib.converters.frame_length import frame_length_circuit, length_formula
-from rfc.lib.converters.guard import STREAM, guard_ports, guard_stream, held_high, registered_output
+from rfc.lib.converters.guard import guard_ports, guard_stream, held_high, registered_output
 from rfc.lib.converters.malformed import DROP_REASONS, Reason, counter_name, reason_counter
 from rfc.lib.converters.ports import REASON_BITS, Direction, Port, PortRole
 from rfc.lib.converters.ram import ram

@@ -25,6 +25,7 @@ from __future__ import annotations
 
 from myhdl import ConcatSignal, Constant, Signal, always_comb, always_seq, block, intbv
 
+from rfc.lib.axi_stream import AxiStream
 from rfc.lib.converters.frame_buffer import frame_buffer
 from rfc.lib.converters.frame_length import frame_length_circuit
 from rfc.lib.converters.packer import byte_packer
@@ -381,28 +382,22 @@ def rfc_publisher(
     if fixed is None and not buffered:
         counts = {name: ports[name] for name in length_names}
         blocks.append(frame_length_circuit(plan, counts, frame_total))
-    m_axis = [ports[f"m_axis_{name}"] for name in ("tdata", "tkeep", "tvalid", "tready", "tlast")]
+    m_axis = AxiStream.named(ports, "m_axis")
     if not buffered:
         blocks.append(
-            byte_packer(
-                clk, rst, give, data, room, start, frame_total, flush, idle,
-                m_axis[0], m_axis[1], m_axis[2], m_axis[3], m_axis[4], width,
-            )
-        )  # fmt: skip
+            byte_packer(clk, rst, give, data, room, start, frame_total, flush, idle, m_axis, width)
+        )
         return blocks
     largest = Constant(intbv(2**COUNTER_BITS - 1)[COUNTER_BITS:])
-    packed = (p_data, p_keep, p_valid, p_ready, p_last)
+    packed = AxiStream(p_data, p_keep, p_valid, p_ready, p_last)
     blocks.append(
-        byte_packer(clk, rst, give, data, room, start, largest, flush, idle, *packed, width)
+        byte_packer(clk, rst, give, data, room, start, largest, flush, idle, packed, width)
     )
     depth = -(-plan.limits.frame // width)
     errors = ports["error_count"]
     blocks.append(
-        frame_buffer(
-            clk, rst, p_data, p_valid, commit, written, busy, errors,
-            m_axis[0], m_axis[1], m_axis[2], m_axis[3], m_axis[4], width, depth,
-        )
-    )  # fmt: skip
+        frame_buffer(clk, rst, p_data, p_valid, commit, written, busy, errors, m_axis, width, depth)
+    )
     return blocks
 
 

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 from myhdl import Constant, Signal, always_comb, always_seq, block, concat, intbv
 
+from rfc.lib.axi_stream import AxiStream
 from rfc.lib.converters.fields import field_captures
 from rfc.lib.converters.malformed import Reason
 from rfc.lib.converters.outputs import element_handshakes, length_registers, stream_outputs
@@ -84,11 +85,7 @@ def rfc_subscriber(plan: Plan, **ports: SignalLike) -> Instances:
     window = byte_window(
         clk,
         rst,
-        ports["s_axis_tdata"],
-        ports["s_axis_tkeep"],
-        ports["s_axis_tvalid"],
-        ports["s_axis_tready"],
-        ports["s_axis_tlast"],
+        AxiStream.named(ports, "s_axis"),
         take,
         release,
         front,

@@ -5,8 +5,8 @@ from __future__ import annotations
 import pytest
 from myhdl import Signal
 
+from rfc.lib.axi_stream import STREAM
 from rfc.lib.converters.checker import checker_ports, checker_signals
-from rfc.lib.converters.guard import STREAM
 from rfc.lib.converters.plan import plan
 from rfc.lib.converters.ports import Direction, Side, ports_of
 from rfc.lib.converters.subscriber import subscriber_ports

@@ -24,8 +24,6 @@ from myhdl import Signal, always_comb, always_seq, block, intbv
 from rfc.lib.types import Instances, SignalLike
 
 
-# AXI-Stream in as `byte_window`'s, as parameters: MyHDL declares the signals a process
-# reads in the order of its block's parameters, and a bundle would reorder the VHDL.
 @block
 def unpack_beats(
     clk: SignalLike,

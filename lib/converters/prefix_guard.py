@@ -29,7 +29,7 @@ from typing import Any
 
 from myhdl import ResetSignal, Signal, always, always_comb, always_seq, block, intbv
 
-from rfc.lib.axi_stream import STREAM
+from rfc.lib.axi_stream import AxiStream
 from rfc.lib.converters.checker import checker_ports, checker_signals
 from rfc.lib.converters.chunk_length import LENGTH_BITS
 from rfc.lib.converters.frame_length import frame_length_circuit, length_formula
@@ -70,9 +70,9 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
         ports: One signal per name of `prefix_guard_ports`.
     """
     clk, rst = ports["clk"], ports["rst"]
-    s_tdata, s_tkeep, s_tvalid, s_tready, s_tlast = (ports[f"s_axis_{n}"] for n in STREAM)
-    m_tdata, m_tkeep, m_tvalid, m_tready, m_tlast = guard_stream(ports)
-    outer = tuple(ports[f"m_axis_{n}"] for n in STREAM)
+    s_tdata, s_tkeep, s_tvalid, s_tready, s_tlast = AxiStream.named(ports, "s_axis").signals()
+    inner, outer = guard_stream(ports), AxiStream.named(ports, "m_axis")
+    m_tdata, m_tkeep, m_tvalid, m_tready, m_tlast = inner.signals()
     header = ports[DECLARED]
     declared = Signal(intbv(0)[LENGTH_BITS:])  # taken with the frame's first beat
     last = checking.steps[-2]
@@ -248,7 +248,7 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
             overflow.next = False
 
     memory = ram(clk, w_enable, address, s_tdata, r_enable, r_address, r_data, depth)
-    out = registered_output(clk, rst, (m_tdata, m_tkeep, m_tvalid, m_tready, m_tlast), outer)
+    out = registered_output(clk, rst, inner, outer)
     counters = [
         reason_counter(clk, rst, drop, drop, reason, ports[counter_name(r)], int(r))
         for r in DROP_REASONS

@@ -49,7 +49,7 @@ def typed_pass_through(
     return wires, [take_all(clk, rst, ready) for ready in _unmatched_readies(in0, out0)]
 
 
-# Shaped like the guards' processes, doing none of their checks.
+# `guard.held_high` under its own name, which MyHDL gives its process in the VHDL.
 @block
 def take_all(clk: SignalLike, rst: SignalLike, ready: SignalLike) -> Instances:
     """Hold `ready` high after reset: a part of the message no output carries is dropped."""

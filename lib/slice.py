@@ -11,6 +11,8 @@ subscriber can parse the next frame while its consumer still works on the last.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 from myhdl import ConcatSignal, Signal, always_comb, always_seq, block, intbv
 
 from rfc.lib.types import Instances, SignalLike
@@ -87,30 +89,40 @@ def slice_body(fields: tuple[tuple[str, int, bool], ...], **ports: SignalLike) -
     return core, outputs
 
 
-# Its ports recur in the manager's `routed_slice` and `slice_chain`, which wrap it.
+@dataclass(frozen=True)
+class SliceSide:
+    """One side of a `parts_slice`: the signals handed on together and their handshake.
+
+    The slices of the manager and the guards take their two sides as these, so that a block
+    wrapping a slice names its ports once.
+
+    Attributes:
+        parts: The signals handed on together (a stream's tdata, tkeep, tlast …).
+        valid: The side's valid.
+        ready: The side's ready.
+    """
+
+    parts: list[SignalLike]
+    valid: SignalLike
+    ready: SignalLike
+
+
 @block
 def parts_slice(
-    clk: SignalLike,
-    rst: SignalLike,
-    sources: list[SignalLike],
-    s_valid: SignalLike,
-    s_ready: SignalLike,
-    sinks: list[SignalLike],
-    m_valid: SignalLike,
-    m_ready: SignalLike,
+    clk: SignalLike, rst: SignalLike, producer: SliceSide, consumer: SliceSide
 ) -> Instances:
     """`register_slice` over several signals at once (a stream's tdata, tkeep, tlast …).
 
     Args:
         clk: Clock.
         rst: Synchronous reset.
-        sources: At least two signals from the producer, handed on together.
-        s_valid: The producer's valid.
-        s_ready: Driven from a flip-flop: the slice takes the sources this cycle.
-        sinks: One signal per source, of its width, towards the consumer.
-        m_valid: Driven from a flip-flop: the sinks hold a message.
-        m_ready: The consumer takes it.
+        producer: At least two signals handed on together; its ready is driven from a
+            flip-flop: the slice takes the parts this cycle.
+        consumer: One signal per part of the producer's, of its width; its valid is driven
+            from a flip-flop: the parts hold a message.
     """
+    sources, s_valid, s_ready = producer.parts, producer.valid, producer.ready
+    sinks, m_valid, m_ready = consumer.parts, consumer.valid, consumer.ready
     widths = [len(source) for source in sources]
     data = Signal(intbv(0)[sum(widths) :])
     core = register_slice(

@@ -33,6 +33,7 @@ __all__ = [
 ]
 
 
+# `slice.part_of`'s two cases under their own names, which name their VHDL processes.
 @block
 def split(word: SignalLike, low: int, target: SignalLike) -> Instances:
     """Drive `target` with the bits of `word` from `low` up."""

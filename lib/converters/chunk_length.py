@@ -48,6 +48,7 @@ def dma_tap(subscribers: Sequence[int], **ports: SignalLike) -> Instances:
         ports[f"m_axis_{n}"] for n in ("tdata", "tkeep", "tvalid", "tready", "tlast")
     )
 
+    # Drives a stream's signals as other blocks' output processes do, from its own inputs.
     @always_comb
     def through() -> None:
         m_data.next = s_data
@@ -87,6 +88,7 @@ def chunk_length(
     stored = Signal(intbv(0)[8 * HEADER_BYTES :])
     word = Signal(intbv(0)[8 * HEADER_BYTES :])
 
+    # Assembles the header as the manager's demultiplexer does, inside its own process.
     @always_comb
     def assemble() -> None:
         assembled = intbv(0)[8 * HEADER_BYTES :]

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from myhdl import Signal, always_comb, always_seq, block, intbv
 
+from rfc.lib.axi_stream import AxiStream
 from rfc.lib.converters.ports import COUNTER_BITS
 from rfc.lib.types import Instances, SignalLike
 
@@ -24,11 +25,7 @@ def frame_buffer(
     length: SignalLike,
     busy: SignalLike,
     errors: SignalLike,
-    tdata: SignalLike,
-    tkeep: SignalLike,
-    tvalid: SignalLike,
-    tready: SignalLike,
-    tlast: SignalLike,
+    out: AxiStream,
     width: int,
     depth: int,
 ) -> Instances:
@@ -43,14 +40,11 @@ def frame_buffer(
         length: Its length in bytes.
         busy: Driven: a committed frame is being sent; nothing may be written.
         errors: Driven: frames dropped for not fitting.
-        tdata: Output beat data.
-        tkeep: Output byte enables.
-        tvalid: Output valid.
-        tready: Output ready.
-        tlast: Output last beat.
+        out: The frame's beats.
         width: Bus width in bytes.
         depth: Beats the buffer holds.
     """
+    tdata, tkeep, tvalid, tready, tlast = out.signals()
     memory = [Signal(intbv(0)[8 * width :]) for _ in range(depth)]
     written = Signal(intbv(0, min=0, max=depth + 1))
     read = Signal(intbv(0, min=0, max=depth + 1))

@@ -17,24 +17,15 @@ from typing import Any
 
 from myhdl import Signal, always_comb, always_seq, block, intbv
 
+from rfc.lib.axi_stream import STREAM, AxiStream
+from rfc.lib.converters.checker import checker_ports, checker_signals
 from rfc.lib.converters.malformed import DROP_REASONS, Reason, counter_name, reason_counter
-from rfc.lib.converters.ports import (
-    COUNTER_BITS,
-    REASON_BITS,
-    Direction,
-    Port,
-    PortRole,
-    Side,
-    ports_of,
-)
+from rfc.lib.converters.ports import COUNTER_BITS, REASON_BITS, Direction, Port, PortRole
 from rfc.lib.converters.ram import ram
 from rfc.lib.converters.steps import Plan
 from rfc.lib.converters.subscriber import rfc_subscriber
-from rfc.lib.converters.toplevel import port_signals
-from rfc.lib.slice import parts_slice
-
-#: A stream's signals, by the suffix of their ports' names.
-STREAM = ("tdata", "tkeep", "tvalid", "tready", "tlast")
+from rfc.lib.slice import SliceSide, parts_slice
+from rfc.lib.types import Instances, SignalLike
 
 
 class _State(IntEnum):
@@ -75,11 +66,9 @@ def frame_guard(plan: Plan, depth: int, **ports: Any) -> Any:
         ports: One signal per name of `guard_ports`.
     """
     clk, rst = ports["clk"], ports["rst"]
-    s_tdata, s_tkeep, s_tvalid, s_tready, s_tlast = (
-        ports[f"s_axis_{n}"] for n in ("tdata", "tkeep", "tvalid", "tready", "tlast")
-    )
-    m_tdata, m_tkeep, m_tvalid, m_tready, m_tlast = guard_stream(ports)
-    outer = tuple(ports[f"m_axis_{n}"] for n in STREAM)
+    s_tdata, s_tkeep, s_tvalid, s_tready, s_tlast = AxiStream.named(ports, "s_axis").signals()
+    inner, outer = guard_stream(ports), AxiStream.named(ports, "m_axis")
+    m_tdata, m_tkeep, m_tvalid, m_tready, m_tlast = inner.signals()
     full_keep = (1 << plan.width) - 1
     state = Signal(intbv(0, min=0, max=len(_State)))
     written = Signal(intbv(0, min=0, max=depth + 1))
@@ -94,24 +83,11 @@ def frame_guard(plan: Plan, depth: int, **ports: Any) -> Any:
     c_valid, c_ready = Signal(bool(0)), Signal(bool(0))
     drop, reason = Signal(bool(0)), Signal(intbv(0)[REASON_BITS:])
 
-    checker = port_signals(ports_of(plan, Side.SUBSCRIBER))
-    readies = [checker[p.name] for p in ports_of(plan, Side.SUBSCRIBER) if p.direction is
-               Direction.IN]  # fmt: skip
+    checker, readies = checker_signals(plan)
     verdict, failed = checker["msg_valid"], checker["msg_error"]
     cause = Signal(intbv(0)[REASON_BITS:])
-    parser = rfc_subscriber(
-        plan,
-        clk=clk,
-        rst=rst,
-        s_axis_tdata=s_tdata,
-        s_axis_tkeep=s_tkeep,
-        s_axis_tvalid=c_valid,
-        s_axis_tready=c_ready,
-        s_axis_tlast=s_tlast,
-        error_count=Signal(intbv(0)[COUNTER_BITS:]),
-        error_reason=cause,
-        **checker,
-    )
+    inputs = (s_tdata, s_tkeep, c_valid, c_ready, s_tlast)
+    parser = rfc_subscriber(plan, **checker_ports(clk, rst, inputs, cause, checker))
     storing, waiting, sending = int(_State.STORE), int(_State.VERDICT), int(_State.SEND)
     maximum = int(Reason.MAXIMUM)
 
@@ -132,6 +108,7 @@ def frame_guard(plan: Plan, depth: int, **ports: Any) -> Any:
         if failed:
             reason.next = cause
 
+    # Drives the output from this guard's registers, as the slice and the mux do from theirs.
     @always_comb
     def give() -> None:
         m_tdata.next = r_data
@@ -181,7 +158,7 @@ def frame_guard(plan: Plan, depth: int, **ports: Any) -> Any:
         for r in DROP_REASONS
     ]
     held = [held_high(clk, rst, ready) for ready in readies]  # the checker takes everything
-    out = registered_output(clk, rst, (m_tdata, m_tkeep, m_tvalid, m_tready, m_tlast), outer)
+    out = registered_output(clk, rst, inner, outer)
     return parser, take, give, control, memory, counters, held, out
 
 
@@ -196,25 +173,26 @@ def held_high(clk: Any, rst: Any, signal: Any) -> Any:
     return hold
 
 
-def guard_stream(ports: dict[str, Any]) -> tuple[Any, ...]:
-    """Signals like the guard's ``m_axis`` ports (tdata, tkeep, tvalid, tready, tlast)."""
-    return tuple(
+def guard_stream(ports: dict[str, SignalLike]) -> AxiStream:
+    """Signals like the guard's ``m_axis`` ports."""
+    return AxiStream(*(
         Signal(intbv(0)[len(ports[f"m_axis_{n}"]) :]) if n in ("tdata", "tkeep")
         else Signal(bool(0))
         for n in STREAM
-    )  # fmt: skip
+    ))  # fmt: skip
 
 
 @block
-def registered_output(clk: Any, rst: Any, inner: tuple[Any, ...], outer: tuple[Any, ...]) -> Any:
+def registered_output(
+    clk: SignalLike, rst: SignalLike, inner: AxiStream, outer: AxiStream
+) -> Instances:
     """Hand the stream a guard drives (`inner`) on to its ports (`outer`) through a slice.
 
-    Both are (tdata, tkeep, tvalid, tready, tlast). Everything the guard hands its subscriber
-    then comes from a flip-flop: no path runs from the guard's logic into the subscriber's. The
-    slice adds a cycle of latency, not of throughput.
+    Everything the guard hands its subscriber then comes from a flip-flop: no path runs from
+    the guard's logic into the subscriber's. The slice adds a cycle of latency, not of
+    throughput.
     """
-    data, keep, valid, ready, last = inner
-    m_data, m_keep, m_valid, m_ready, m_last = outer
-    return parts_slice(
-        clk, rst, [data, keep, last], valid, ready, [m_data, m_keep, m_last], m_valid, m_ready
-    )
+    data, keep, valid, ready, last = inner.signals()
+    m_data, m_keep, m_valid, m_ready, m_last = outer.signals()
+    source = SliceSide([data, keep, last], valid, ready)
+    return parts_slice(clk, rst, source, SliceSide([m_data, m_keep, m_last], m_valid, m_ready))

@@ -16,11 +16,11 @@ from __future__ import annotations
 
 from myhdl import Signal, always_comb, always_seq, block, intbv
 
+from rfc.lib.axi_stream import AxiStream
 from rfc.lib.converters.ports import COUNTER_BITS
 from rfc.lib.types import Instances, SignalLike
 
 
-# AXI-Stream out as `frame_buffer`'s, which it feeds: each block names its own ports.
 @block
 def byte_packer(
     clk: SignalLike,
@@ -32,11 +32,7 @@ def byte_packer(
     length: SignalLike,
     flush: SignalLike,
     idle: SignalLike,
-    tdata: SignalLike,
-    tkeep: SignalLike,
-    tvalid: SignalLike,
-    tready: SignalLike,
-    tlast: SignalLike,
+    out: AxiStream,
     width: int,
 ) -> Instances:
     """Pack bytes into beats of `width` bytes.
@@ -51,13 +47,10 @@ def byte_packer(
         length: The frame's length.
         flush: Send what is held now, ending the frame (store-and-forward).
         idle: Driven: every byte of the last frame has left the output register.
-        tdata: Output beat data.
-        tkeep: Output byte enables.
-        tvalid: Output valid.
-        tready: Output ready.
-        tlast: Output last beat of the frame.
+        out: The beats; ``tlast`` marks the last beat of the frame.
         width: Bus width in bytes.
     """
+    tdata, tkeep, tvalid, tready, tlast = out.signals()
     size = 3 * width
     held = Signal(intbv(0)[8 * size :])
     count = Signal(intbv(0, min=0, max=size + 1))

@@ -29,23 +29,16 @@ from typing import Any
 
 from myhdl import ResetSignal, Signal, always, always_comb, always_seq, block, intbv
 
+from rfc.lib.axi_stream import AxiStream
+from rfc.lib.converters.checker import checker_ports, checker_signals
 from rfc.lib.converters.chunk_length import LENGTH_BITS
 from rfc.lib.converters.frame_length import frame_length_circuit, length_formula
-from rfc.lib.converters.guard import STREAM, guard_ports, guard_stream, held_high, registered_output
+from rfc.lib.converters.guard import guard_ports, guard_stream, held_high, registered_output
 from rfc.lib.converters.malformed import DROP_REASONS, Reason, counter_name, reason_counter
-from rfc.lib.converters.ports import (
-    COUNTER_BITS,
-    REASON_BITS,
-    Direction,
-    Port,
-    PortRole,
-    Side,
-    ports_of,
-)
+from rfc.lib.converters.ports import REASON_BITS, Direction, Port, PortRole
 from rfc.lib.converters.ram import ram
 from rfc.lib.converters.steps import Payload, Plan
 from rfc.lib.converters.subscriber import rfc_subscriber
-from rfc.lib.converters.toplevel import port_signals
 
 #: The port giving the frame's size as the chunk header declared it.
 DECLARED = "frame_length"
@@ -77,11 +70,9 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
         ports: One signal per name of `prefix_guard_ports`.
     """
     clk, rst = ports["clk"], ports["rst"]
-    s_tdata, s_tkeep, s_tvalid, s_tready, s_tlast = (
-        ports[f"s_axis_{n}"] for n in ("tdata", "tkeep", "tvalid", "tready", "tlast")
-    )
-    m_tdata, m_tkeep, m_tvalid, m_tready, m_tlast = guard_stream(ports)
-    outer = tuple(ports[f"m_axis_{n}"] for n in STREAM)
+    s_tdata, s_tkeep, s_tvalid, s_tready, s_tlast = AxiStream.named(ports, "s_axis").signals()
+    inner, outer = guard_stream(ports), AxiStream.named(ports, "m_axis")
+    m_tdata, m_tkeep, m_tvalid, m_tready, m_tlast = inner.signals()
     header = ports[DECLARED]
     declared = Signal(intbv(0)[LENGTH_BITS:])  # taken with the frame's first beat
     last = checking.steps[-2]
@@ -104,25 +95,12 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
     c_rst = ResetSignal(rst.active, active=rst.active, isasync=rst.isasync)
     allowed = Signal(intbv(0)[LENGTH_BITS + 2 :])
 
-    checker = port_signals(ports_of(checking, Side.SUBSCRIBER))
-    readies = [checker[p.name] for p in ports_of(checking, Side.SUBSCRIBER)
-               if p.direction is Direction.IN]  # fmt: skip
+    checker, readies = checker_signals(checking)
     verdict, failed = checker["msg_valid"], checker["msg_error"]
     started = checker[f"{last.stream}_tvalid"]
     cause = Signal(intbv(0)[REASON_BITS:])
-    parser = rfc_subscriber(
-        checking,
-        clk=clk,
-        rst=c_rst,
-        s_axis_tdata=s_tdata,
-        s_axis_tkeep=s_tkeep,
-        s_axis_tvalid=c_valid,
-        s_axis_tready=c_ready,
-        s_axis_tlast=s_tlast,
-        error_count=Signal(intbv(0)[COUNTER_BITS:]),
-        error_reason=cause,
-        **checker,
-    )
+    inputs = (s_tdata, s_tkeep, c_valid, c_ready, s_tlast)
+    parser = rfc_subscriber(checking, **checker_ports(clk, c_rst, inputs, cause, checker))
     counts = {s.port: checker[s.port] for s in length_formula(checking).stages if s.port}
     size = Signal(intbv(0)[LENGTH_BITS + 2 :])
     sizing = frame_length_circuit(checking, counts, size)
@@ -136,6 +114,8 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
     storing, replaying, passing, dropping = (int(s) for s in _State)
     maximum, truncated, trailing = int(Reason.MAXIMUM), int(Reason.TRUNCATED), int(Reason.TRAILING)
 
+    # Addressing and output as `frame_guard`'s processes: MyHDL converts a process whole, so
+    # each guard's VHDL keeps its own.
     @always_comb
     def take() -> None:
         taking = state == storing and c_rst != c_rst.active and not ended
@@ -194,6 +174,7 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
             ok = True  # the checker's verdict, or a started frame of the declared size
         drop.next = judging and (verdict or was_started) and not ok
 
+    # `frame_guard`'s output, and the bus straight through while PASS: a process of its own.
     @always_comb
     def give() -> None:
         if state == passing:
@@ -214,6 +195,7 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
         # the checker starts afresh for every frame (a register: no glitch reaches its reset)
         c_rst.next = rst == rst.active or state != storing or decided
 
+    # Three ways back to STORE clear the same registers: a process converts whole, no helper.
     @always_seq(clk.posedge, reset=rst)
     def control() -> None:
         if state == storing:
@@ -266,7 +248,7 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
             overflow.next = False
 
     memory = ram(clk, w_enable, address, s_tdata, r_enable, r_address, r_data, depth)
-    out = registered_output(clk, rst, (m_tdata, m_tkeep, m_tvalid, m_tready, m_tlast), outer)
+    out = registered_output(clk, rst, inner, outer)
     counters = [
         reason_counter(clk, rst, drop, drop, reason, ports[counter_name(r)], int(r))
         for r in DROP_REASONS

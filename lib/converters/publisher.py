@@ -25,6 +25,7 @@ from __future__ import annotations
 
 from myhdl import ConcatSignal, Constant, Signal, always_comb, always_seq, block, intbv
 
+from rfc.lib.axi_stream import AxiStream
 from rfc.lib.converters.frame_buffer import frame_buffer
 from rfc.lib.converters.frame_length import frame_length_circuit
 from rfc.lib.converters.packer import byte_packer
@@ -32,7 +33,7 @@ from rfc.lib.converters.ports import COUNTER_BITS, Side, count_bits, dma_ports, 
 from rfc.lib.converters.sources import payload_bases, payload_sources, record_sources
 from rfc.lib.converters.steps import End, Loop, Next, Payload, Plan, Record
 from rfc.lib.converters.tables import Kind, tables
-from rfc.lib.converters.wiring import bits_of, follow, loop_counters, select_bit
+from rfc.lib.converters.wiring import LoopControl, bits_of, follow, loop_counters, select_bit
 from rfc.lib.slice import register_slice
 from rfc.lib.types import Instances, SignalLike
 from rfc.messages.codec import default_values, encode
@@ -341,6 +342,7 @@ def rfc_publisher(
         else:
             gap_n.next = (int(gap) + 8 - step) % 8
 
+    # Latches the next values as the subscriber's `registers` does: a process converts whole.
     @always_seq(clk.posedge, reset=rst)
     def registers() -> None:
         pc.next = pc_n
@@ -375,36 +377,27 @@ def rfc_publisher(
     if held:
         blocks.append(select_bit(bits_of(empties), tuple(held_table), pc, gone))
         blocks.append(anything_left(bits_of(empties[1:]), leftover))
-    blocks.append(
-        loop_counters(
-            plan, clk, rst, pc, count, load_loop, next_element, loop_counts, loop_more, more
-        )
-    )
+    loop_control = LoopControl(clk, rst, pc, count, load_loop, next_element)
+    blocks.append(loop_counters(plan, loop_control, loop_counts, loop_more, more))
     if fixed is None and not buffered:
         counts = {name: ports[name] for name in length_names}
         blocks.append(frame_length_circuit(plan, counts, frame_total))
-    m_axis = [ports[f"m_axis_{name}"] for name in ("tdata", "tkeep", "tvalid", "tready", "tlast")]
+    m_axis = AxiStream.named(ports, "m_axis")
     if not buffered:
         blocks.append(
-            byte_packer(
-                clk, rst, give, data, room, start, frame_total, flush, idle,
-                m_axis[0], m_axis[1], m_axis[2], m_axis[3], m_axis[4], width,
-            )
-        )  # fmt: skip
+            byte_packer(clk, rst, give, data, room, start, frame_total, flush, idle, m_axis, width)
+        )
         return blocks
     largest = Constant(intbv(2**COUNTER_BITS - 1)[COUNTER_BITS:])
-    packed = (p_data, p_keep, p_valid, p_ready, p_last)
+    packed = AxiStream(p_data, p_keep, p_valid, p_ready, p_last)
     blocks.append(
-        byte_packer(clk, rst, give, data, room, start, largest, flush, idle, *packed, width)
+        byte_packer(clk, rst, give, data, room, start, largest, flush, idle, packed, width)
     )
     depth = -(-plan.limits.frame // width)
     errors = ports["error_count"]
     blocks.append(
-        frame_buffer(
-            clk, rst, p_data, p_valid, commit, written, busy, errors,
-            m_axis[0], m_axis[1], m_axis[2], m_axis[3], m_axis[4], width, depth,
-        )
-    )  # fmt: skip
+        frame_buffer(clk, rst, p_data, p_valid, commit, written, busy, errors, m_axis, width, depth)
+    )
     return blocks
 
 
@@ -477,6 +470,7 @@ def stream_ready(take: SignalLike, pc: SignalLike, at: int, ready: SignalLike) -
     return acknowledge
 
 
+# Compares with all ones where the manager's `spread_bit` drives them: another circuit.
 @block
 def anything_left(empties: SignalLike, left: SignalLike) -> Instances:
     """`left` while any of the FIFOs whose `empties` bits these are holds a beat."""

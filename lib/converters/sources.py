@@ -19,6 +19,7 @@ from rfc.lib.types import Instances, SignalLike
 CDR_HEADER = (0x00, 0x01, 0x00, 0x00)
 
 
+# Selects a byte by a table where `wiring.select_bit` selects a bit: another VHDL process.
 @block
 def lane_select(
     bus: SignalLike, table: tuple[int, ...], index: SignalLike, out: SignalLike

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 from myhdl import Constant, Signal, always_comb, always_seq, block, concat, intbv
 
+from rfc.lib.axi_stream import AxiStream
 from rfc.lib.converters.fields import field_captures
 from rfc.lib.converters.malformed import Reason
 from rfc.lib.converters.outputs import element_handshakes, length_registers, stream_outputs
@@ -35,7 +36,7 @@ from rfc.lib.converters.ports import (
 from rfc.lib.converters.steps import Plan
 from rfc.lib.converters.tables import Kind, tables
 from rfc.lib.converters.window import byte_window
-from rfc.lib.converters.wiring import bits_of, loop_counters, select_bit
+from rfc.lib.converters.wiring import LoopControl, bits_of, loop_counters, select_bit
 from rfc.lib.types import Instances, SignalLike
 
 TRUNCATED, MAXIMUM, TRAILING, ENCODING = (
@@ -84,11 +85,7 @@ def rfc_subscriber(plan: Plan, **ports: SignalLike) -> Instances:
     window = byte_window(
         clk,
         rst,
-        ports["s_axis_tdata"],
-        ports["s_axis_tkeep"],
-        ports["s_axis_tvalid"],
-        ports["s_axis_tready"],
-        ports["s_axis_tlast"],
+        AxiStream.named(ports, "s_axis"),
         take,
         release,
         front,
@@ -431,11 +428,8 @@ def rfc_subscriber(plan: Plan, **ports: SignalLike) -> Instances:
         blocks.append(select_bit(bits_of(readies), t.channel, pc, channel_ready))
     blocks.append(field_captures(plan, ports, clk, rst, capture, rc, data, header))
     blocks.append(length_registers(plan, ports, clk, rst, lengths, pc, count))
-    blocks.append(
-        loop_counters(
-            plan, clk, rst, pc, count, load_loop, next_element, loop_counts, loop_more, more
-        )
-    )
+    loop_control = LoopControl(clk, rst, pc, count, load_loop, next_element)
+    blocks.append(loop_counters(plan, loop_control, loop_counts, loop_more, more))
     blocks.append(element_handshakes(plan, ports, pc, o_valid, loop_counts))
     blocks.append(stream_outputs(plan, ports, o_data, o_keep, o_last, o_valid, o_stream, o_ready))
     return blocks

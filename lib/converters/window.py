@@ -17,6 +17,7 @@ from __future__ import annotations
 
 from myhdl import Signal, always_comb, always_seq, block, intbv
 
+from rfc.lib.axi_stream import AxiStream
 from rfc.lib.types import Instances, SignalLike
 
 
@@ -24,11 +25,7 @@ from rfc.lib.types import Instances, SignalLike
 def byte_window(
     clk: SignalLike,
     rst: SignalLike,
-    tdata: SignalLike,
-    tkeep: SignalLike,
-    tvalid: SignalLike,
-    tready: SignalLike,
-    tlast: SignalLike,
+    stream: AxiStream,
     take: SignalLike,
     release: SignalLike,
     front: SignalLike,
@@ -41,11 +38,8 @@ def byte_window(
     Args:
         clk: Clock.
         rst: Synchronous reset.
-        tdata: Beat data (lane 0 in the low byte).
-        tkeep: Byte enables; read on the last beat only.
-        tvalid: Beat valid.
-        tready: Driven: the window accepts a beat this cycle.
-        tlast: Last beat of the frame.
+        stream: The frame's beats; ``tkeep`` is read on the last beat only, ``tready`` is
+            driven: the window accepts a beat this cycle.
         take: Bytes the parser consumes this cycle (at most `avail` and `width`).
         release: The parser finished the frame: accept the next one.
         front: Driven: the first `width` bytes (lane 0 is the next byte of the frame).
@@ -53,6 +47,7 @@ def byte_window(
         ended: Driven: the frame's last beat is in the window.
         width: Bus width in bytes.
     """
+    tdata, tkeep, tvalid, tready, tlast = stream.signals()
     size = 3 * width
     room = 2 * width
     buffer = Signal(intbv(0)[8 * size :])

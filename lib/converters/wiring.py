@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 from myhdl import ConcatSignal, always_comb, always_seq, block
 
 from rfc.lib.converters.steps import Loop, Plan
@@ -49,20 +51,37 @@ def follow(source: SignalLike, target: SignalLike) -> Instances:
     return copy
 
 
+@dataclass(frozen=True)
+class LoopControl:
+    """The signals of a converter's control that every loop counter reads.
+
+    Attributes:
+        clk: Clock.
+        rst: Synchronous reset.
+        pc: The current step.
+        count: The element count a Loop step loads.
+        load: The control loads `count` at the current (Loop) step.
+        step: The control finishes an element at the current (Next) step.
+    """
+
+    clk: SignalLike
+    rst: SignalLike
+    pc: SignalLike
+    count: SignalLike
+    load: SignalLike
+    step: SignalLike
+
+    def signals(self) -> tuple[SignalLike, ...]:
+        """clk, rst, pc, count, load, step: to bind to a block's local names."""
+        return self.clk, self.rst, self.pc, self.count, self.load, self.step
+
+
 @block
 def loop_counter(
-    clk: SignalLike,
-    rst: SignalLike,
-    pc: SignalLike,
-    count: SignalLike,
-    load: SignalLike,
-    step: SignalLike,
-    at: int,
-    end: int,
-    counter: SignalLike,
-    more: SignalLike,
+    control: LoopControl, at: int, end: int, counter: SignalLike, more: SignalLike
 ) -> Instances:
     """Elements left in one sequence: loaded at its Loop step, counted down at its Next."""
+    clk, rst, pc, count, load, step = control.signals()
 
     @always_seq(clk.posedge, reset=rst)
     def track() -> None:
@@ -78,16 +97,10 @@ def loop_counter(
     return track, status
 
 
-# The ports of `loop_counter`, one per Loop step of the plan.
 @block
 def loop_counters(
     plan: Plan,
-    clk: SignalLike,
-    rst: SignalLike,
-    pc: SignalLike,
-    count: SignalLike,
-    load: SignalLike,
-    step: SignalLike,
+    control: LoopControl,
     counters: list[SignalLike],
     mores: list[SignalLike],
     more: SignalLike,
@@ -97,12 +110,12 @@ def loop_counters(
     blocks = []
     for at, counter, flag in zip(loops, counters, mores, strict=True):
         loop = plan.loop(at)
-        blocks.append(loop_counter(clk, rst, pc, count, load, step, at, loop.next, counter, flag))
+        blocks.append(loop_counter(control, at, loop.next, counter, flag))
     if len(mores) > 1:
         table = [0] * len(plan.steps)
         for index, at in enumerate(loops):
             table[plan.loop(at).next] = index
-        blocks.append(select_bit(bits_of(mores), tuple(table), pc, more))
+        blocks.append(select_bit(bits_of(mores), tuple(table), control.pc, more))
     elif mores:
         blocks.append(follow(mores[0], more))
     return blocks

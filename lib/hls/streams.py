@@ -24,7 +24,6 @@ from myhdl import Signal, always_comb, always_seq, block, intbv
 from rfc.lib.types import Instances, SignalLike
 
 
-# AXI-Stream in as `byte_window`'s: each block names its own ports.
 @block
 def unpack_beats(
     clk: SignalLike,

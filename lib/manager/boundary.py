@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from myhdl import Signal, always_comb, block, intbv
 
-from rfc.lib.slice import parts_slice
+from rfc.lib.slice import SliceSide, parts_slice
 from rfc.lib.types import Instances, SignalLike
 
 
@@ -23,7 +23,8 @@ def stream_like(signals: list[SignalLike]) -> list[SignalLike]:
     ]
 
 
-# The ports of `parts_slice` (a MyHDL block takes every port as its own parameter).
+# Flat ports, unlike `slice_chain`: its process reads them, and bound from a `SliceSide` they
+# would be declared in another order in the VHDL (MyHDL lists a block's signals as Python does).
 @block
 def routed_slice(
     clk: SignalLike,
@@ -53,7 +54,10 @@ def routed_slice(
     """
     any_valid, held_valid, taken = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
     core = parts_slice(
-        clk, rst, [*sources, s_valid], any_valid, s_ready, [*sinks, m_valid], held_valid, taken
+        clk,
+        rst,
+        SliceSide([*sources, s_valid], any_valid, s_ready),
+        SliceSide([*sinks, m_valid], held_valid, taken),
     )
 
     @always_comb
@@ -64,26 +68,20 @@ def routed_slice(
     return core, offer
 
 
-# The ports of `parts_slice`, and how many slices to chain.
 @block
 def slice_chain(
-    clk: SignalLike,
-    rst: SignalLike,
-    sources: list[SignalLike],
-    s_valid: SignalLike,
-    s_ready: SignalLike,
-    sinks: list[SignalLike],
-    m_valid: SignalLike,
-    m_ready: SignalLike,
-    stages: int,
+    clk: SignalLike, rst: SignalLike, producer: SliceSide, consumer: SliceSide, stages: int
 ) -> Instances:
     """`stages` slices in a row: room for twice `stages` beats, `stages` cycles of latency."""
+    sources, s_valid, s_ready = producer.parts, producer.valid, producer.ready
+    sinks, m_valid, m_ready = consumer.parts, consumer.valid, consumer.ready
     parts = []
     for stage in range(stages):
         last = stage == stages - 1
         outputs = sinks if last else stream_like(sources)
         valid = m_valid if last else Signal(bool(0))
         ready = m_ready if last else Signal(bool(0))
-        parts.append(parts_slice(clk, rst, sources, s_valid, s_ready, outputs, valid, ready))
+        ends = SliceSide(sources, s_valid, s_ready), SliceSide(outputs, valid, ready)
+        parts.append(parts_slice(clk, rst, *ends))
         sources, s_valid, s_ready = outputs, valid, ready
     return parts

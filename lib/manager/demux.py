@@ -21,6 +21,8 @@ from rfc.lib.types import Instances, SignalLike
 ERROR_COUNT_BITS = 16
 
 
+# Ports as parameters, not a bundle: MyHDL declares the signals a process reads in the
+# order of its block's parameters, and a bundle would reorder the generated VHDL.
 @block
 def chunk_demux(
     clk: SignalLike,

@@ -35,7 +35,7 @@ from rfc.lib.manager.header import BusGeometry
 from rfc.lib.manager.mux import chunk_mux
 from rfc.lib.manager.status import status_inserter
 from rfc.lib.schedulers.spec import AnySchedulerSpec
-from rfc.lib.slice import parts_slice
+from rfc.lib.slice import SliceSide, parts_slice
 from rfc.lib.types import Instances, SignalLike
 
 #: Bits of a publisher's frame-length input.
@@ -112,12 +112,8 @@ def manager_body(shape: ManagerShape, **ports: SignalLike) -> Instances:
     dma_in = [ports[f"s_axis_mm2s_{name}"] for name in ("tdata", "tkeep", "tlast")]
     mm2s = stream_like(dma_in)
     mm2s_valid, mm2s_ready = Signal(bool(0)), Signal(bool(0))
-    parts.append(
-        parts_slice(
-            clk, rst, dma_in, ports["s_axis_mm2s_tvalid"], ports["s_axis_mm2s_tready"], mm2s,
-            mm2s_valid, mm2s_ready,
-        )
-    )  # fmt: skip
+    dma_side = SliceSide(dma_in, ports["s_axis_mm2s_tvalid"], ports["s_axis_mm2s_tready"])
+    parts.append(parts_slice(clk, rst, dma_side, SliceSide(mm2s, mm2s_valid, mm2s_ready)))
 
     # With no subscriber the DMA's stream still has to be read (MyHDL's std_logic ports need
     # every input used): a demultiplexer for one subscriber that is always ready drains it.
@@ -176,12 +172,9 @@ def manager_body(shape: ManagerShape, **ports: SignalLike) -> Instances:
         )
     )  # fmt: skip
     dma_out = [ports[f"m_axis_s2mm_{name}"] for name in ("tdata", "tkeep", "tlast")]
-    parts.append(
-        parts_slice(
-            clk, rst, [s2mm["tdata"], s2mm["tkeep"], s2mm["tlast"]], s2mm["tvalid"], s2mm_ready,
-            dma_out, ports["m_axis_s2mm_tvalid"], ports["m_axis_s2mm_tready"],
-        )
-    )  # fmt: skip
+    dma_side = SliceSide(dma_out, ports["m_axis_s2mm_tvalid"], ports["m_axis_s2mm_tready"])
+    s2mm_parts = [s2mm["tdata"], s2mm["tkeep"], s2mm["tlast"]]
+    parts.append(parts_slice(clk, rst, SliceSide(s2mm_parts, s2mm["tvalid"], s2mm_ready), dma_side))
 
     if n_pub:
         parts.append(publisher_inputs(shape, clk, rst, ports, out, out_ready))
@@ -212,10 +205,13 @@ def publisher_inputs(
         valid, ready = Signal(bool(0)), Signal(bool(0))
         parts.append(
             slice_chain(
-                clk, rst, sources, ports[f"pub{i}_tvalid"], ports[f"pub{i}_tready"], sinks,
-                valid, ready, stages=PUBLISHER_SLICES,
+                clk,
+                rst,
+                SliceSide(sources, ports[f"pub{i}_tvalid"], ports[f"pub{i}_tready"]),
+                SliceSide(sinks, valid, ready),
+                stages=PUBLISHER_SLICES,
             )
-        )  # fmt: skip
+        )
         for name, sink in zip(names, sinks, strict=True):
             sliced[name].append(sink)
         sliced["tvalid"].append(valid)

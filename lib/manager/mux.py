@@ -33,7 +33,8 @@ def is_preemptive(spec: AnySchedulerSpec) -> bool:
     return spec.algorithm.preemptive
 
 
-# AXI-Stream in and out like the manager's other parts; each block names its own ports.
+# Ports as parameters, not a bundle: MyHDL declares the signals a process reads in the
+# order of its block's parameters, and a bundle would reorder the generated VHDL.
 @block
 def chunk_mux(
     clk: SignalLike,
@@ -223,7 +224,8 @@ def chunk_mux(
             ending = True
             state.next = t_state.IDLE
 
-        # The buffer: the head leaves, the entering beat joins behind what stays.
+        # The buffer: the head leaves, the entering beat joins behind what stays (the same
+        # three fields move each time; a process converts whole, so each move is written out).
         if leaving:
             if count == 2:
                 head_data.next = tail_data

@@ -23,7 +23,8 @@ def status_length(counters: int) -> int:
     return 4 * counters
 
 
-# AXI-Stream in and out like the manager's other parts; each block names its own ports.
+# Ports as parameters, not a bundle: MyHDL declares the signals a process reads in the
+# order of its block's parameters, and a bundle would reorder the generated VHDL.
 @block
 def status_inserter(
     clk: SignalLike,

@@ -113,27 +113,29 @@ begin
         variable started: boolean := false;
         variable presented: boolean := false;
         variable quiet: natural := 0;
+
+        -- An event's line: its name and the cycle it happened on ("start 12").
+        procedure log_event(name: string) is
+        begin
+            write(text_line, name);
+            write(text_line, cycle);
+            writeline(output, text_line);
+        end procedure log_event;
     begin
         if rising_edge(clk) and rst = '0' then
             quiet := quiet + 1;
             if s_tvalid = '1' and s_tready = '1' then
                 quiet := 0;
                 if not started then
-                    write(text_line, string'("start "));
-                    write(text_line, cycle);
-                    writeline(output, text_line);
+                    log_event("start ");
                     started := true;
                 end if;
                 if s_tlast = '1' then
-                    write(text_line, string'("last "));
-                    write(text_line, cycle);
-                    writeline(output, text_line);
+                    log_event("last ");
                 end if;
             end if;
             if fields_valid = '1' and not presented then
-                write(text_line, string'("fields "));
-                write(text_line, cycle);
-                writeline(output, text_line);
+                log_event("fields ");
                 presented := true;
             end if;
             if m_tvalid = '1' then
@@ -163,9 +165,7 @@ begin
                 end if;
             end if;
             if quiet = STALL_CYCLES then
-                write(text_line, string'("stall "));
-                write(text_line, cycle);
-                writeline(output, text_line);
+                log_event("stall ");
                 stalled <= true;
             end if;
         end if;

@@ -29,6 +29,8 @@ def inverse_gain(iterations: int, frac_bits: int) -> int:
     return (math.isqrt(squared) + (1 << (_ROOT_GUARD - 1))) >> _ROOT_GUARD
 
 
+# Beside CordicConfig, not one with it: rotation mode has no input width, starts from the
+# inverse gain and reduces its angle, so its registers' widths follow other rules.
 @dataclass(frozen=True)
 class SinCosConfig:
     """The shape of a sine/cosine CORDIC.

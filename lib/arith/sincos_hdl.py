@@ -62,6 +62,8 @@ def sincos(
     )
 
 
+# Ports as `sincos`'s, spelled again: each variant is a block of its own that rfc check's
+# timing table knows by its function (rfc.lib.arith.timing).
 @block
 def sincos_iterative(
     clk: SignalLike,
@@ -130,6 +132,7 @@ def sincos_iterative(
     return ends, rotate, count, iterate, outputs
 
 
+# Ports as `sincos`'s (see `sincos_iterative`).
 @block
 def sincos_pipelined(
     clk: SignalLike,

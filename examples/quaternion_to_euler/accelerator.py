@@ -30,6 +30,7 @@ def quaternion_to_euler(clk: Any, rst: Any, q: Any, euler: Any) -> Any:
     )  # fmt: skip
 
 
+# The same wrapper around the other core: a spec names its accelerator's top function.
 @block
 def quaternion_to_euler_iterative(clk: Any, rst: Any, q: Any, euler: Any) -> Any:
     """As `quaternion_to_euler`, one quaternion at a time in under a third of the logic."""

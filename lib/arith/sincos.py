@@ -13,7 +13,7 @@ from functools import cached_property
 
 import numpy as np
 
-from rfc.lib.cordic.config import arctan_of_inverse, quarter_pi
+from rfc.lib.cordic.config import arctan_table, default_guard, gain_squared, quarter_pi
 from rfc.lib.fixed import FixedFormat
 
 #: Extra bits carried while computing the inverse gain, removed by its final rounding.
@@ -24,12 +24,13 @@ _MODEL_BITS = 62
 
 def inverse_gain(iterations: int, frac_bits: int) -> int:
     """``round(2**frac_bits / ∏ sqrt(1 + 2**-2i))``: the start that makes the result unscaled."""
-    numerator = math.prod((1 << (2 * i)) + 1 for i in range(iterations))
-    shift = 2 * sum(range(iterations))
+    numerator, shift = gain_squared(iterations)
     squared = (1 << (2 * (frac_bits + _ROOT_GUARD) + shift)) // numerator
     return (math.isqrt(squared) + (1 << (_ROOT_GUARD - 1))) >> _ROOT_GUARD
 
 
+# Beside CordicConfig, not one with it: rotation mode has no input width, starts from the
+# inverse gain and reduces its angle, so its registers' widths follow other rules.
 @dataclass(frozen=True)
 class SinCosConfig:
     """The shape of a sine/cosine CORDIC.
@@ -67,9 +68,7 @@ class SinCosConfig:
     @property
     def guard(self) -> int:
         """Guard bits in use."""
-        if self.guard_bits is not None:
-            return self.guard_bits
-        return math.ceil(math.log2(self.steps)) + 2 if self.steps > 1 else 2
+        return self.guard_bits if self.guard_bits is not None else default_guard(self.steps)
 
     @property
     def precision(self) -> int:
@@ -104,8 +103,7 @@ class SinCosConfig:
     @cached_property
     def atan_table(self) -> tuple[int, ...]:
         """``round(atan(2**-i) * 2**precision)`` for each iteration ``i``."""
-        rest = (arctan_of_inverse(1 << i, self.precision) for i in range(1, self.steps))
-        return (quarter_pi(self.precision), *rest)
+        return arctan_table(self.steps, self.precision)
 
     @cached_property
     def half_pi(self) -> int:

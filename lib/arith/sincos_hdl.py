@@ -2,7 +2,8 @@
 
 Both have the same ports, the same latency (`SinCosConfig.latency` cycles from the input
 handshake to `out_valid`) and the bits of `rfc.lib.arith.sincos.sincos`. The iterative block
-takes one input at a time (initiation interval latency + 2: three adders, two barrel shifters);
+takes one input at a time (initiation interval latency + 2: three adders, two barrel shifters,
+the turn read from its ROM a cycle ahead);
 the pipelined one takes an input every cycle (three adders per iteration, the stages of
 `rfc.lib.cordic.stage`). Outputs stay put while `out_valid` is high and `out_ready` low. Wide
 constants reach VHDL as ROM contents (VHDL integers stop at 32 bits).
@@ -14,7 +15,7 @@ from myhdl import Signal, always_comb, always_seq, block, intbv
 
 from rfc.lib.arith.pipeline import stall_control
 from rfc.lib.arith.sincos import SinCosConfig
-from rfc.lib.cordic.stage import micro_rotation, rotation
+from rfc.lib.cordic.stage import looped_rotation, micro_rotation
 from rfc.lib.types import Instances, SignalLike
 
 
@@ -61,6 +62,8 @@ def sincos(
     )
 
 
+# Ports as `sincos`'s, spelled again: each variant is a block of its own that rfc check's
+# timing table knows by its function (rfc.lib.arith.timing).
 @block
 def sincos_iterative(
     clk: SignalLike,
@@ -74,23 +77,31 @@ def sincos_iterative(
     sin: SignalLike,
     config: SinCosConfig,
 ) -> Instances:
-    """One micro-rotation per cycle through variable shifts; ports as `sincos`."""
+    """One micro-rotation per cycle through variable shifts; ports as `sincos`.
+
+    The turn atan(2**-i) is read from its ROM a cycle ahead into a register, so that a cycle's
+    path is the shift and one add (`looped_rotation`), not the ROM read and an add.
+    """
     steps = config.steps
-    # The step counter rests at `steps` while idle; that address reads 0.
+    # The turn after the last step is read as 0 (never used).
     rom = (*config.atan_table, 0)
     start_rom = (config.start,)
+    first_turn_rom = (config.atan_table[0],)
+    turn = _signed(config.z_width)
+    following = Signal(intbv(1, min=0, max=steps + 2))
     xs, ys = _signed(config.xy_width), _signed(config.xy_width)
     zs = _signed(config.z_width)
     flip = Signal(bool(0))
     step = Signal(intbv(steps, min=0, max=steps + 1))
     full = Signal(bool(0))
-    z_start = _signed(config.z_width)
-    flip_start = Signal(bool(0))
-    reduce = sincos_reduction(angle, z_start, flip_start, config)
-    round_cos = sincos_rounding(xs, flip, cos, config)
-    round_sin = sincos_rounding(ys, flip, sin, config)
+    z_start, flip_start = _signed(config.z_width), Signal(bool(0))
+    ends = sincos_ends(angle, z_start, flip_start, xs, ys, flip, cos, sin, config)
     x_next, y_next, z_next = Signal(xs.val), Signal(ys.val), Signal(zs.val)
-    rotate = rotation(False, step, rom, step, (xs, ys, zs), (x_next, y_next, z_next))
+    rotate = looped_rotation(False, step, turn, (xs, ys, zs), (x_next, y_next, z_next))
+
+    @always_comb
+    def count() -> None:
+        following.next = step + 1
 
     @always_seq(clk.posedge, reset=rst)
     def iterate() -> None:
@@ -98,9 +109,10 @@ def sincos_iterative(
             xs.next = x_next
             ys.next = y_next
             zs.next = z_next
+            turn.next = rom[following]
             if step == steps - 1:
                 full.next = True
-            step.next = step + 1
+            step.next = following
         elif full:
             if out_ready:
                 full.next = False
@@ -108,6 +120,7 @@ def sincos_iterative(
             xs.next = start_rom[0]
             ys.next = 0
             zs.next = z_start
+            turn.next = first_turn_rom[0]
             flip.next = flip_start
             step.next = 0
 
@@ -116,9 +129,10 @@ def sincos_iterative(
         in_ready.next = step == steps and not full
         out_valid.next = full
 
-    return reduce, round_cos, round_sin, rotate, iterate, outputs
+    return ends, rotate, count, iterate, outputs
 
 
+# Ports as `sincos`'s (see `sincos_iterative`).
 @block
 def sincos_pipelined(
     clk: SignalLike,
@@ -145,11 +159,10 @@ def sincos_pipelined(
     valid_last = valid[last]
     advance = Signal(bool(0))
     start_rom = (config.start,)
-    z_start = _signed(config.z_width)
-    flip_start = Signal(bool(0))
-    reduce = sincos_reduction(angle, z_start, flip_start, config)
-    round_cos = sincos_rounding(xs[last], flips[last], cos, config)
-    round_sin = sincos_rounding(ys[last], flips[last], sin, config)
+    z_start, flip_start = _signed(config.z_width), Signal(bool(0))
+    ends = sincos_ends(
+        angle, z_start, flip_start, xs[last], ys[last], flips[last], cos, sin, config
+    )
 
     @always_seq(clk.posedge, reset=rst)
     def load() -> None:
@@ -160,6 +173,9 @@ def sincos_pipelined(
             flip_first.next = flip_start
             valid_first.next = in_valid
 
+    # The same stages as `rfc.lib.cordic.hdl.cordic_pipeline`'s, in rotation mode: a block
+    # holding them both would rename every stage of the generated VHDL (MyHDL names instances
+    # by their blocks).
     stages = [
         micro_rotation(
             clk,
@@ -175,7 +191,26 @@ def sincos_pipelined(
     ]
 
     control = stall_control(valid_last, out_ready, advance, in_ready, out_valid)
-    return reduce, round_cos, round_sin, load, stages, control
+    return ends, load, stages, control
+
+
+@block
+def sincos_ends(
+    angle: SignalLike,
+    z_start: SignalLike,
+    flip_start: SignalLike,
+    x: SignalLike,
+    y: SignalLike,
+    flip: SignalLike,
+    cos: SignalLike,
+    sin: SignalLike,
+    config: SinCosConfig,
+) -> Instances:
+    """Both variants' ends: `angle` reduced into `z_start`, `flip_start`; `cos`, `sin` rounded."""
+    reduce = sincos_reduction(angle, z_start, flip_start, config)
+    round_cos = sincos_rounding(x, flip, cos, config)
+    round_sin = sincos_rounding(y, flip, sin, config)
+    return reduce, round_cos, round_sin
 
 
 @block

@@ -96,22 +96,33 @@ def reason_counter(
 def drop_gate(**ports: SignalLike) -> Instances:
     """Pass valid records on; take rejected ones here and count them by reason.
 
-    `ports` holds one signal per name of `gate_ports`. The gate adds no cycle: a valid record's
-    handshake goes straight through, a rejected one is acknowledged in the cycle it appears.
+    `ports` holds one signal per name of `gate_ports`. A valid record's handshake goes straight
+    through (the gate adds no cycle). A rejected one is taken on the first cycle its consumer's
+    `m_ready` is high, or else on the next cycle, from a flip-flop of the gate's own: `s_ready`
+    is the consumer's ready (a register slice's flip-flop in a generated system) or that one,
+    never the subscriber's verdict, so no path runs from the subscriber through the gate back
+    into it. A consumer that waits for `m_valid` before its ready still lets rejected records go.
     """
     clk, rst = ports["clk"], ports["rst"]
     s_valid, s_ready, s_error = ports["s_valid"], ports["s_ready"], ports["s_error"]
     m_valid, m_ready = ports["m_valid"], ports["m_ready"]
+    dropping = Signal(bool(0))  # a rejected record waits for its acknowledgement
+    dropped = Signal(bool(0))  # a rejected record is taken on this cycle
+
+    @always_seq(clk.posedge, reset=rst)
+    def wait_to_drop() -> None:
+        dropping.next = s_valid and s_error and not m_ready and not dropping
 
     @always_comb
     def handshake() -> None:
         m_valid.next = s_valid and not s_error
-        s_ready.next = m_ready or s_error
+        s_ready.next = m_ready or dropping
+        dropped.next = s_valid and s_error and (m_ready or dropping)
 
     counters = [
         reason_counter(
-            clk, rst, s_valid, s_error, ports["s_reason"], ports[counter_name(r)], int(r)
+            clk, rst, dropped, dropped, ports["s_reason"], ports[counter_name(r)], int(r)
         )
         for r in DROP_REASONS
     ]
-    return handshake, counters
+    return wait_to_drop, handshake, counters

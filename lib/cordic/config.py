@@ -35,6 +35,23 @@ def quarter_pi(frac_bits: int) -> int:
     return (exact + (1 << (_SERIES_GUARD - 1))) >> _SERIES_GUARD
 
 
+def default_guard(iterations: int) -> int:
+    """Guard bits against the rounding drift of `iterations` truncated shifts: log2 of them + 2."""
+    return math.ceil(math.log2(iterations)) + 2 if iterations > 1 else 2
+
+
+def arctan_table(iterations: int, frac_bits: int) -> tuple[int, ...]:
+    """``round(atan(2**-i) * 2**frac_bits)`` for each micro-rotation ``i``."""
+    rest = (arctan_of_inverse(1 << i, frac_bits) for i in range(1, iterations))
+    return (quarter_pi(frac_bits), *rest)
+
+
+def gain_squared(iterations: int) -> tuple[int, int]:
+    """The CORDIC gain's square ``∏ (1 + 2**-2i)`` as (numerator, log2 of its denominator)."""
+    numerator = math.prod((1 << (2 * i)) + 1 for i in range(iterations))
+    return numerator, 2 * sum(range(iterations))
+
+
 @dataclass(frozen=True)
 class CordicConfig:
     """The shape of a vectoring CORDIC.
@@ -66,9 +83,7 @@ class CordicConfig:
     @property
     def guard(self) -> int:
         """Guard bits in use."""
-        if self.guard_bits is not None:
-            return self.guard_bits
-        return math.ceil(math.log2(self.iterations)) + 2 if self.iterations > 1 else 2
+        return self.guard_bits if self.guard_bits is not None else default_guard(self.iterations)
 
     @property
     def internal_width(self) -> int:
@@ -110,9 +125,7 @@ class CordicConfig:
     @cached_property
     def atan_table(self) -> tuple[int, ...]:
         """``round(atan(2**-i) * 2**angle_frac)`` for each iteration ``i``."""
-        first = quarter_pi(self.angle_frac)
-        rest = (arctan_of_inverse(1 << i, self.angle_frac) for i in range(1, self.iterations))
-        return (first, *rest)
+        return arctan_table(self.iterations, self.angle_frac)
 
     @cached_property
     def pi(self) -> int:
@@ -121,8 +134,7 @@ class CordicConfig:
 
     def gain(self, frac_bits: int) -> int:
         """The magnitude gain ``∏ sqrt(1 + 2**-2i)`` rounded to `frac_bits` fraction bits."""
-        numerator = math.prod((1 << (2 * i)) + 1 for i in range(self.iterations))
-        denominator_log2 = 2 * sum(range(self.iterations))
+        numerator, denominator_log2 = gain_squared(self.iterations)
         extra = 2 * (frac_bits + _SERIES_GUARD)
         squared = (numerator << extra) >> denominator_log2
         root = math.isqrt(squared)

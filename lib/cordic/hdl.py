@@ -72,6 +72,9 @@ def cordic_vectoring(
     )
 
 
+# Its micro-rotation is spelled out rather than `stage.rotation` or `stage.looped_rotation`:
+# the shifted operands and the turn are registered a cycle before the add, and a level
+# vector's angle is held.
 @block
 def cordic_iterative(clk: SignalLike, rst: SignalLike, in_valid: SignalLike,
                      in_ready: SignalLike, x: SignalLike, y: SignalLike, out_valid: SignalLike,
@@ -163,6 +166,8 @@ def cordic_pipelined(clk: SignalLike, rst: SignalLike, in_valid: SignalLike,
     return datapath, control
 
 
+# Its stage list is also `rfc.lib.arith.sincos_hdl.sincos_pipelined`'s, in vectoring mode: a
+# block holding both would rename every stage in the generated VHDL.
 @block
 def cordic_pipeline(clk: SignalLike, rst: SignalLike, advance: SignalLike, valid_in: SignalLike,
                     x: SignalLike, y: SignalLike, valid_out: SignalLike, angle: SignalLike,

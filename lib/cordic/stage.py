@@ -2,10 +2,11 @@
 
 Rotation mode (sine/cosine) turns towards the residual angle `z`; vectoring mode (atan2 and
 magnitude) turns towards y = 0. Either way a micro-rotation turns (x, y) by ±atan(2**-i) with
-shifts by i and adds the opposite turn to `z`. `rotation` is that step alone (combinational),
-which the iterative blocks loop through with a variable shift; `micro_rotation` is one
-registered stage of an unrolled pipeline, which also passes a valid bit and a tag (what later
-stages need to know about the input: a negation, a level vector) along unchanged.
+shifts by i and adds the opposite turn to `z`. `rotation` is that step alone (combinational)
+and `micro_rotation` one registered stage of an unrolled pipeline built on it, which also
+passes a valid bit and a tag (what later stages need to know about the input: a negation, a
+level vector) along unchanged. `looped_rotation` is the same step for a loop that runs one
+micro-rotation per cycle (the sine/cosine's), built for the variable shift's timing.
 """
 
 from __future__ import annotations
@@ -15,6 +16,16 @@ from collections.abc import Sequence
 from myhdl import Signal, always_comb, always_seq, block, intbv
 
 from rfc.lib.types import Instances, SignalLike
+
+
+def _turn_down(vectoring: bool, y: SignalLike, z: SignalLike) -> tuple[SignalLike, int, int]:
+    """When a micro-rotation turns "down": the sign bit (signal, index) and its value.
+
+    Down, x grows by y's share, y shrinks by x's and z grows by the turn: when y >= 0 in
+    vectoring mode, when z < 0 in rotation mode.
+    """
+    lead = y if vectoring else z
+    return lead, len(lead) - 1, 0 if vectoring else 1
 
 
 @block
@@ -35,11 +46,7 @@ def rotation(vectoring: bool, shift: int | SignalLike, turns: tuple[int, ...],
     x, y, z = before
     x_next, y_next, z_next = after
     width = len(z)
-    # Turn "down" (x grows by y's share, y shrinks by x's, z grows by the turn) when the sign
-    # bit of `lead` is `down_sign`: y >= 0 in vectoring mode, z < 0 in rotation mode.
-    lead = y if vectoring else z
-    top = len(lead) - 1
-    down_sign = 0 if vectoring else 1
+    lead, top, down_sign = _turn_down(vectoring, y, z)
 
     @always_comb
     def turn_vector() -> None:
@@ -93,3 +100,76 @@ def micro_rotation(clk: SignalLike, rst: SignalLike, advance: SignalLike, shift:
             z_out.next = z_next
 
     return step, hold
+
+
+# One idea with `rotation`, two builds: a fixed shift is wires, so a pipeline stage keeps the
+# plain sum-or-difference; a loop's variable shift needs every other level of logic removed.
+@block
+def looped_rotation(
+    vectoring: bool,
+    shift: SignalLike,
+    turn: SignalLike,
+    before: Sequence[SignalLike],
+    after: Sequence[SignalLike],
+) -> Instances:
+    """``(x, y, z)`` after micro-rotation `shift` of an iterative loop (combinational).
+
+    The same turn as `rotation` with a variable shift, built for one iteration per cycle at
+    100 MHz: the turn atan(2**-i) comes from a register (the loop reads its ROM a cycle ahead),
+    the shift is unsigned with the sign filled in (a signed shift amount made Yosys negate it
+    first), and each of x and y is one adder that adds the shifted operand or its complement
+    plus 1, so that its path is a barrel shifter and one carry chain.
+
+    Args:
+        vectoring: Turn towards y = 0 (vectoring mode) instead of towards z = 0 (rotation).
+        shift: The micro-rotation's index i (a Signal).
+        turn: ``atan(2**-i)`` as a raw integer of `z`'s format (a register).
+        before: ``(x, y, z)`` signals.
+        after: ``(x, y, z)`` signals of the same widths.
+    """
+    x, y, z = before
+    x_next, y_next, z_next = after
+    width = len(x)
+    lead, top, down_sign = _turn_down(vectoring, y, z)
+
+    @always_comb
+    def turn_vector() -> None:
+        fill = intbv(0)[width:]  # the bits an arithmetic shift fills with the sign
+        fill[:] = ~fill
+        fill[:] = fill >> shift
+        fill[:] = ~fill
+        x_shifted = intbv(0)[width:]
+        x_shifted[:] = x[width:]
+        x_shifted[:] = x_shifted >> shift
+        if x[width - 1]:
+            x_shifted[:] = x_shifted | fill
+        y_shifted = intbv(0)[width:]
+        y_shifted[:] = y[width:]
+        y_shifted[:] = y_shifted >> shift
+        if y[width - 1]:
+            y_shifted[:] = y_shifted | fill
+        # x_shifted becomes y's addend and y_shifted x's: complemented where subtracted
+        down = lead[top] == down_sign
+        if down:
+            x_shifted[:] = ~x_shifted
+            z_next.next = z + turn
+        else:
+            y_shifted[:] = ~y_shifted
+            z_next.next = z - turn
+        # the carry in as a low bit below both operands: one carry chain, not two
+        left = intbv(0)[width + 1 :]
+        right = intbv(0)[width + 1 :]
+        total = intbv(0)[width + 2 :]
+        left[width + 1 : 1] = x[width:]
+        left[0] = 1
+        right[width + 1 : 1] = y_shifted
+        right[0] = not down
+        total[:] = left + right
+        x_next.next = total[width + 1 : 1].signed()
+        left[width + 1 : 1] = y[width:]
+        right[width + 1 : 1] = x_shifted
+        right[0] = down
+        total[:] = left + right
+        y_next.next = total[width + 1 : 1].signed()
+
+    return turn_vector

@@ -16,7 +16,7 @@ from typing import Any
 
 from rfc.errors import located
 from rfc.ir.infrastructure import Converter, Scheduler
-from rfc.ir.model import BlockKind, Connection, Design
+from rfc.ir.model import BlockKind, Connection, Design, Endpoint
 from rfc.lib.converters.buffers import Buffer
 from rfc.lib.converters.malformed import DROP_REASONS, status_port
 from rfc.lib.converters.plan import accelerator_ports
@@ -228,9 +228,11 @@ def generate_system(
                     builder, design, connections[0], interfaces[origin], targets[0]
                 )
                 into = connections[0].destination
-                label = f"{identifier(into.block)}_{identifier(into.port or 'in')}_slice"
                 sliced = slices.insert(
-                    builder, targets[0], label, streams=into.block not in record_first_publishers
+                    builder,
+                    targets[0],
+                    _slice_label(into),
+                    streams=into.block not in record_first_publishers,
                 )
                 wire_connection(builder, complete, sliced, what)
                 continue
@@ -239,7 +241,12 @@ def generate_system(
                     len(targets), directory, f"rfc_fork{len(targets)}"
                 )
                 components.append(forks[len(targets)])
-            _fan_out(builder, interfaces[origin], targets, forks[len(targets)].entity, what)
+            sliced_targets = [
+                slices.insert(builder, target, _slice_label(c.destination))
+                for c, target in zip(connections, targets, strict=True)
+            ]
+            fork = forks[len(targets)].entity
+            _fan_out(builder, interfaces[origin], sliced_targets, fork, what)
 
     components += marks.components
     components += slices.components
@@ -309,6 +316,11 @@ def _wire_dma(builder: TopBuilder, label: str, converter: Converter, side: Side)
     builder.wire(Terminal(label, "frame_length"), Terminal(MANAGER, f"{group}_length"))
 
 
+def _slice_label(into: Endpoint) -> str:
+    """The register slice in front of a block's input port."""
+    return f"{identifier(into.block)}_{identifier(into.port or 'in')}_slice"
+
+
 def _fan_out(
     builder: TopBuilder,
     source: Interface,
@@ -318,7 +330,9 @@ def _fan_out(
 ) -> None:
     """One message to several blocks: fields shared, the handshake through a fork.
 
-    check-hardware has refused strings and sequences here: a fork shares no sub-stream.
+    Each target is a register slice (as a single consumer's is), so what the fork hands on and
+    the readies it combines come from flip-flops. check-hardware has refused strings and
+    sequences here: a fork shares no sub-stream.
     """
     valid, ready = f"{MESSAGE}_valid", f"{MESSAGE}_ready"
     label = f"{source[valid].cell}_{source[valid].port}_fork"

@@ -14,6 +14,7 @@ from pathlib import Path
 
 import pytest
 
+from tests.lower.system.systems import PASS_THROUGH, fan_out, write_spec
 from tests.support.cli import run_rfc
 
 ROOT = Path(__file__).resolve().parents[3]
@@ -42,7 +43,21 @@ def test_every_handshake_between_blocks_crosses_a_slice(tmp_path, spec, top, han
     out = tmp_path / "build"
     result = run_rfc("build", ROOT / "examples" / spec, "-o", out, cwd=ROOT)
     assert result.returncode == 0, result.stderr
-    cells = instances(out / "hw" / f"{top}.vhd")
+    assert sliced_consumers(out / "hw" / f"{top}.vhd", handshake) == consumers
+
+
+def test_each_block_a_message_fans_out_to_takes_it_from_a_slice(tmp_path):
+    # the fork shares the message: its outputs go into a slice per consumer, as one consumer's
+    spec = write_spec(tmp_path, fan_out(), pass__py=PASS_THROUGH)
+    result = run_rfc("build", spec, "-o", tmp_path / "build", cwd=ROOT)
+    assert result.returncode == 0, result.stderr
+    # first, second and their two publishers
+    assert sliced_consumers(tmp_path / "build" / "hw" / "fan_out_pl.vhd", "") == 4
+
+
+def sliced_consumers(top: Path, handshake: str) -> int:
+    """How many blocks take a message or sub-stream; asserts each takes it from a slice."""
+    cells = instances(top)
     slices = {label for label, (entity, _) in cells.items() if re.search(r"_slice\d+$", entity)}
     from_slice = {cells[s][1]["m_valid"] for s in slices}
     into_slice = {cells[s][1]["m_ready"] for s in slices}
@@ -61,4 +76,4 @@ def test_every_handshake_between_blocks_crosses_a_slice(tmp_path, spec, top, han
             ready = ports[port.removesuffix(f"{handshake}valid") + f"{handshake}ready"]
             assert ready in into_slice, f"{label} gives {ready} straight to a block"
             guarded.add(label)
-    assert len(guarded) == consumers
+    return len(guarded)

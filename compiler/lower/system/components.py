@@ -95,7 +95,8 @@ def convert(
     def conversion() -> list[Path]:
         with elaboration(), _quiet_conversion():
             instance = top(**port_signals(ports))
-            return convert_myhdl(instance, name, directory, header=f"{name}: {what}")
+            files: list[Path] = convert_myhdl(instance, name, directory, header=f"{name}: {what}")
+        return files
 
     return _component(entity_of(name, ports), converted(name, directory, conversion), top)
 
@@ -170,7 +171,8 @@ def manager_component(shape: ManagerShape, directory: Path, name: str) -> Compon
         with elaboration(), _quiet_conversion():
             instance = top(**port_signals(ports))
             header = f"{name}: the DMA manager of the system (rfc)"
-            return convert_myhdl(instance, name, directory, header=header)
+            files: list[Path] = convert_myhdl(instance, name, directory, header=header)
+        return files
 
     return _component(entity_of(name, ports), converted(name, directory, conversion), top)
 

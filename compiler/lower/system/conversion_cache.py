@@ -16,6 +16,7 @@ from __future__ import annotations
 import contextlib
 import hashlib
 import json
+import os
 import shutil
 import sys
 import sysconfig
@@ -35,6 +36,8 @@ _FORMAT = "rfc conversion cache, v1"
 _BUILD_KEY: ContextVar[str | None] = ContextVar("rfc_conversion_key", default=None)
 #: An entry's list of its files, in the order the conversion returned them; written last.
 _LISTING = "files.json"
+#: How many versions of rfc's files keep their entries (the versions used last).
+KEPT_VERSIONS = 8
 
 
 def conversion_key(spec: Path, design: Design, options: object) -> str:
@@ -52,7 +55,13 @@ def conversion_key(spec: Path, design: Design, options: object) -> str:
 
 @contextlib.contextmanager
 def conversions_cached(key: str) -> Iterator[None]:
-    """Within this context, `converted` reuses the files of earlier builds with the same key."""
+    """Within this context, `converted` reuses the files of earlier builds with the same key.
+
+    Entries are grouped by rfc's own files (`rfc_digest`); each build marks its group as
+    used and drops all but the `KEPT_VERSIONS` groups used last, so developing rfc (a new
+    group with every edit) does not grow the cache without bound.
+    """
+    _prune(_group())
     token = _BUILD_KEY.set(key)
     try:
         yield
@@ -69,11 +78,11 @@ def converted(name: str, directory: Path, convert: Callable[[], Sequence[Path]])
     key = _BUILD_KEY.get()
     if key is None:
         return list(convert())
-    entry = cache_root() / "conversion" / hashlib.sha256(f"{key}\n{name}".encode()).hexdigest()
+    entry = _group() / hashlib.sha256(f"{key}\n{name}".encode()).hexdigest()
     listing = entry / _LISTING
-    if listing.is_file():
-        directory.mkdir(parents=True, exist_ok=True)
+    with contextlib.suppress(OSError):  # missing, or pruned by another build meanwhile
         names = json.loads(listing.read_text())
+        directory.mkdir(parents=True, exist_ok=True)
         for file_name in names:
             shutil.copyfile(entry / file_name, directory / file_name)
         return [directory / file_name for file_name in names]
@@ -93,6 +102,28 @@ def _publish(entry: Path, files: Sequence[Path]) -> None:
         partial.rename(entry)
     except OSError:  # another build published the same entry meanwhile
         shutil.rmtree(partial, ignore_errors=True)
+
+
+def _group() -> Path:
+    """The folder of the entries made by this version of rfc's files."""
+    return cache_root() / "conversion" / rfc_digest()[:24]
+
+
+def _prune(group: Path) -> None:
+    """Mark `group` as used now; delete the groups beyond the `KEPT_VERSIONS` used last."""
+    group.mkdir(parents=True, exist_ok=True)
+    os.utime(group)
+    groups = sorted(group.parent.iterdir(), key=_used, reverse=True)
+    for stale in groups[KEPT_VERSIONS:]:
+        shutil.rmtree(stale, ignore_errors=True)
+
+
+def _used(group: Path) -> float:
+    """When a build last used `group` (0 when it is gone meanwhile)."""
+    try:
+        return group.stat().st_mtime
+    except OSError:
+        return 0.0
 
 
 @cache

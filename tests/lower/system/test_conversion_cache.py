@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import myhdl._block
@@ -10,7 +11,13 @@ from typer.testing import CliRunner
 from rfc.cli import app
 from rfc.driver import compile_spec
 from rfc.lower.artifacts import BuildOptions
-from rfc.lower.system.conversion_cache import conversion_key, rfc_digest, source_digest
+from rfc.lower.system.conversion_cache import (
+    KEPT_VERSIONS,
+    conversion_key,
+    conversions_cached,
+    rfc_digest,
+    source_digest,
+)
 from tests.lower.system.systems import point_system, write_spec
 from tests.support.cli import run_rfc
 
@@ -116,3 +123,19 @@ def test_rfcs_digest_covers_its_packages_and_changes_with_any_of_their_files(tmp
     assert changed != before
     (package / "extra.py").write_text("")
     assert source_digest([package]) not in (before, changed)
+
+
+def test_a_build_keeps_the_entries_of_the_rfc_versions_used_last_and_drops_older_ones(
+    tmp_path, monkeypatch
+):
+    monkeypatch.setenv("RFC_CACHE_DIR", str(tmp_path))
+    older = [tmp_path / "conversion" / f"version{n}" for n in range(KEPT_VERSIONS)]
+    for age, group in enumerate(older, start=1):
+        (group / "entry").mkdir(parents=True)
+        os.utime(group, (1e9 - age, 1e9 - age))  # version0 used last, the last one first
+    with conversions_cached("a key"):
+        pass
+    kept = sorted(p.name for p in (tmp_path / "conversion").iterdir())
+    assert len(kept) == KEPT_VERSIONS
+    assert rfc_digest()[:24] in kept
+    assert f"version{KEPT_VERSIONS - 1}" not in kept

@@ -92,16 +92,22 @@ def converted(name: str, directory: Path, convert: Callable[[], Sequence[Path]])
 
 
 def _publish(entry: Path, files: Sequence[Path]) -> None:
-    """Copy `files` into a new folder, then rename it to `entry` (unless another build did)."""
-    entry.parent.mkdir(parents=True, exist_ok=True)
-    partial = Path(tempfile.mkdtemp(prefix=f"{entry.name}.", dir=entry.parent))
-    for path in files:
-        shutil.copyfile(path, partial / path.name)
-    (partial / _LISTING).write_text(json.dumps([path.name for path in files]))
+    """Copy `files` into a new folder, then rename it to `entry`.
+
+    Best effort: when another build published the same entry meanwhile, or pruned its group,
+    the entry is left to them (the build has its files either way).
+    """
+    partial = None
     try:
+        entry.parent.mkdir(parents=True, exist_ok=True)
+        partial = Path(tempfile.mkdtemp(prefix=f"{entry.name}.", dir=entry.parent))
+        for path in files:
+            shutil.copyfile(path, partial / path.name)
+        (partial / _LISTING).write_text(json.dumps([path.name for path in files]))
         partial.rename(entry)
-    except OSError:  # another build published the same entry meanwhile
-        shutil.rmtree(partial, ignore_errors=True)
+    except OSError:
+        if partial is not None:
+            shutil.rmtree(partial, ignore_errors=True)
 
 
 def _group() -> Path:

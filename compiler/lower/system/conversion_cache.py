@@ -117,9 +117,12 @@ def _group() -> Path:
 
 def _prune(group: Path) -> None:
     """Mark `group` as used now; delete the groups beyond the `KEPT_VERSIONS` used last."""
-    group.mkdir(parents=True, exist_ok=True)
-    os.utime(group)
-    groups = sorted(group.parent.iterdir(), key=_used, reverse=True)
+    try:
+        group.mkdir(parents=True, exist_ok=True)
+        os.utime(group)
+        groups = sorted(group.parent.iterdir(), key=_used, reverse=True)
+    except OSError:  # pruned by a concurrent build: this one publishes into it again
+        return
     for stale in groups[KEPT_VERSIONS:]:
         shutil.rmtree(stale, ignore_errors=True)
 

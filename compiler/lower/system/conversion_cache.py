@@ -5,10 +5,12 @@ quaternion core alone takes seconds). A build's *conversion key* is a hash of ev
 generated HDL depends on: the spec, the message files, the accelerators' sources, every Python
 module the process loaded from outside the Python installation (the project's own modules,
 wherever they lie), rfc's own files, the MyHDL and Python versions and the build's options.
-Within a build run under `conversions_cached`, each block's files are kept under
-``$RFC_CACHE_DIR/conversion`` by the key and the block's entity name, and a later build with
-the same key copies them instead of converting: the same bytes. A file an accelerator reads
-while it elaborates (other than Python it imports) is not in the key.
+Files count by name and content, not by folder, so a copy of a project elsewhere (a test's
+temporary folder) converts the same. Within a build run under `conversions_cached`, each
+block's files are kept under ``$RFC_CACHE_DIR/conversion`` by the key and the block's entity
+name, and a later build with the same key copies them instead of converting: the same bytes.
+A file an accelerator reads while it elaborates (other than Python it imports) is not in the
+key.
 """
 
 from __future__ import annotations
@@ -47,9 +49,11 @@ def conversion_key(spec: Path, design: Design, options: object) -> str:
         digest.update(part.encode() + b"\n")
     read = [spec, *design.project.msg_paths]
     read += [source for accelerator in design.accelerators for source in accelerator.sources]
-    for path in (*read, *project_modules()):
-        digest.update(str(path).encode() + b"\n")
-        digest.update(path.read_bytes() if path.is_file() else b"(missing)")
+    # by name and content, not folder: a copy of a project elsewhere converts the same
+    contents = sorted((p.name, p.read_bytes() if p.is_file() else b"") for p in read)
+    contents += sorted((p.name, p.read_bytes()) for p in project_modules())
+    for name, content in contents:
+        digest.update(f"{name} {len(content)}\n".encode() + content)
     return digest.hexdigest()
 
 

@@ -92,11 +92,14 @@ def test_a_changed_source_or_imported_module_is_converted_afresh(tmp_path):
     assert "out0_x_num <= in0_y_num;" in build()
 
 
-def test_the_key_changes_with_the_options_and_the_spec_and_not_by_itself(tmp_path):
+def test_the_key_changes_with_the_options_and_the_spec_not_with_the_projects_folder(tmp_path):
     spec = project(tmp_path, "offsets_of_the_key")
-    design = compile_spec(str(spec))
+    (tmp_path / "copy").mkdir()
+    copy = project(tmp_path / "copy", "offsets_of_the_key")
+    design, copied = compile_spec(str(spec)), compile_spec(str(copy))
     key = conversion_key(spec, design, BuildOptions())
     assert conversion_key(spec, design, BuildOptions()) == key
+    assert conversion_key(copy, copied, BuildOptions()) == key
     assert conversion_key(spec, design, BuildOptions(estimate=True)) != key
     spec.write_text(spec.read_text().replace("busWidth: 64", "busWidth: 32"))
     assert conversion_key(spec, design, BuildOptions()) != key

@@ -76,6 +76,7 @@ def build(
     from rfc.ir.text import format_ir
     from rfc.lower import lower
     from rfc.lower.artifacts import BuildOptions
+    from rfc.lower.system.conversion_cache import conversion_key, conversions_cached
     from rfc.lower.system.estimate import TimingWarning
     from rfc.lower.writer import write_artifacts
     from rfc.passes.check_timing import BlockTimingWarning
@@ -100,6 +101,7 @@ def build(
         design = compile_spec(str(spec), after=dump, pipeline=pipeline)
     with (
         _working("estimating the logic with Yosys" if estimate else None),
+        conversions_cached(conversion_key(spec, design, options)),
         warnings.catch_warnings(record=True) as lowering,
     ):
         warnings.simplefilter("always", TimingWarning)

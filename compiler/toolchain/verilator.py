@@ -18,6 +18,7 @@ from collections.abc import Iterator, Mapping, Sequence
 from functools import cache
 from pathlib import Path
 
+from rfc.toolchain.cache import cache_root
 from rfc.toolchain.convert import canonical_lines
 
 #: Options every Verilator build of rfc's Verilog takes: MyHDL writes Verilog-2005, whose
@@ -182,5 +183,4 @@ def build_stream_engine(
 
 def model_cache() -> Path:
     """Where compiled Verilator models are kept: ``$RFC_CACHE_DIR/verilator`` or ``~/.cache``."""
-    root = os.environ.get("RFC_CACHE_DIR") or Path.home() / ".cache" / "rfc"
-    return Path(root) / "verilator"
+    return cache_root() / "verilator"

@@ -31,6 +31,7 @@ from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
 
+from rfc.toolchain.cache import cache_root
 from rfc.toolchain.convert import canonical_lines
 from rfc.toolchain.ghdl import synthesize_verilog
 from rfc.toolchain.sta import TimingPath, parse_sta
@@ -125,8 +126,7 @@ class ModuleEstimate:
 
 def cache_directory() -> Path:
     """Where module figures are kept: ``$RFC_CACHE_DIR/verilog`` or ``~/.cache/rfc/verilog``."""
-    root = os.environ.get("RFC_CACHE_DIR") or Path.home() / ".cache" / "rfc"
-    return Path(root) / "verilog"
+    return cache_root() / "verilog"
 
 
 def module_estimate(verilog: Path, top: str) -> ModuleEstimate:

@@ -12,7 +12,8 @@ from __future__ import annotations
 import dataclasses
 import tempfile
 import warnings
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
@@ -25,7 +26,7 @@ from rfc.lib.converters.build import generate, publisher_top, subscriber_top
 from rfc.lib.converters.guard import frame_guard, guard_ports
 from rfc.lib.converters.malformed import drop_gate, gate_ports
 from rfc.lib.converters.plan import plan
-from rfc.lib.converters.ports import Direction, Port, PortRole, Side
+from rfc.lib.converters.ports import Direction, Port, PortRole, Side, dma_ports, ports_of
 from rfc.lib.converters.steps import Plan
 from rfc.lib.converters.toplevel import elaboration, port_signals, top_block
 from rfc.lib.fork import fork_body
@@ -33,6 +34,7 @@ from rfc.lib.hls.adapter import AdapterShape, hls_adapter
 from rfc.lib.manager.entity import ManagerShape, manager_ports, manager_top
 from rfc.lib.slice import slice_body
 from rfc.lower.netlist import EntityDecl
+from rfc.lower.system.conversion_cache import converted
 from rfc.lower.system.interfaces import declaration
 from rfc.messages.limits import Limits
 from rfc.toolchain import GhdlError, convert_myhdl, synthesize_verilog
@@ -88,14 +90,25 @@ def convert(
     **parameters: Any,
 ) -> Component:
     """Elaborate ``body(**parameters, **ports)`` as entity `name`; convert to VHDL and Verilog."""
-    with elaboration(), warnings.catch_warnings():
-        # MyHDL notes every unread or constant internal signal; generated designs have many.
+    top = top_block(name, [p.name for p in ports], body, **parameters)
+
+    def conversion() -> list[Path]:
+        with elaboration(), _quiet_conversion():
+            instance = top(**port_signals(ports))
+            files: list[Path] = convert_myhdl(instance, name, directory, header=f"{name}: {what}")
+        return files
+
+    return _component(entity_of(name, ports), converted(name, directory, conversion), top)
+
+
+@contextmanager
+def _quiet_conversion() -> Iterator[None]:
+    """MyHDL notes every unread or constant internal signal; generated designs have many."""
+    with warnings.catch_warnings():
         warnings.simplefilter("ignore", ToVHDLWarning)
         warnings.simplefilter("ignore", ToVerilogWarning)
         warnings.simplefilter("ignore", UserWarning)
-        top = top_block(name, [p.name for p in ports], body, **parameters)
-        files = convert_myhdl(top(**port_signals(ports)), name, directory, header=f"{name}: {what}")
-    return _component(entity_of(name, ports), files, top)
+        yield
 
 
 def synthesized_netlist(sources: Sequence[Path], top: str, directory: Path) -> tuple[Path, ...]:
@@ -137,28 +150,31 @@ def converter_component(
         ports = buffered_ports(converter_plan)
         component = convert(name, ports, buffered_publisher, directory, what, plan=converter_plan)
         return replace(component, buffers=buffers)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", UserWarning)
-        generated = generate(converter_plan, side, directory, name)
+    ports = (*dma_ports(converter_plan, side), *ports_of(converter_plan, side))
+
+    def conversion() -> tuple[Path, ...]:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", UserWarning)
+            return generate(converter_plan, side, directory, name).files
+
     top = subscriber_top if side is Side.SUBSCRIBER else publisher_top
-    return _component(entity_of(name, generated.ports), generated.files, top(converter_plan, name))
+    files = converted(name, directory, conversion)
+    return _component(entity_of(name, ports), files, top(converter_plan, name))
 
 
 def manager_component(shape: ManagerShape, directory: Path, name: str) -> Component:
     """The manager: PS→PL demultiplexer and PL→PS multiplexer with its scheduler."""
     ports = manager_ports(shape)
     top = manager_top(shape, name)
-    with elaboration(), warnings.catch_warnings():
-        warnings.simplefilter("ignore", ToVHDLWarning)
-        warnings.simplefilter("ignore", ToVerilogWarning)
-        warnings.simplefilter("ignore", UserWarning)
-        files = convert_myhdl(
-            top(**port_signals(ports)),
-            name,
-            directory,
-            header=f"{name}: the DMA manager of the system (rfc)",
-        )
-    return _component(entity_of(name, ports), files, top)
+
+    def conversion() -> list[Path]:
+        with elaboration(), _quiet_conversion():
+            instance = top(**port_signals(ports))
+            header = f"{name}: the DMA manager of the system (rfc)"
+            files: list[Path] = convert_myhdl(instance, name, directory, header=header)
+        return files
+
+    return _component(entity_of(name, ports), converted(name, directory, conversion), top)
 
 
 def fork_component(consumers: int, directory: Path, name: str) -> Component:

@@ -2,22 +2,21 @@
 
 from __future__ import annotations
 
-import os
-
 import pytest
+
+from rfc.toolchain.cache import cache_root
 
 
 @pytest.fixture(scope="session")
-def synthesis_cache(tmp_path_factory):
-    """One cache of module figures for every `--estimate` of the session, shared by its workers.
+def synthesis_cache():
+    """The user's rfc cache (``$RFC_CACHE_DIR`` or ``~/.cache/rfc``), for every `--estimate`.
 
-    Each module is mapped once, by whichever test builds it first (the quaternion accelerator
-    is shared by several; a worker that needs a module another is mapping waits for it); the
-    cache is written whole or not at all, so workers may share it.
+    Module figures are kept by the content of the module's Verilog, the flow and Yosys's
+    version, so a module the cache holds gives the figures a fresh mapping would: a session
+    maps only the modules no earlier run (a build, the suite in another clone) mapped, and a
+    worker that needs a module another is mapping waits for it. The mapping itself is tested
+    with fresh caches (tests/toolchain).
     """
-    root = tmp_path_factory.getbasetemp()
-    if os.environ.get("PYTEST_XDIST_WORKER"):
-        root = root.parent  # the session's folder, above each worker's own
-    cache = root / "synthesis-cache"
-    cache.mkdir(exist_ok=True)
+    cache = cache_root()
+    cache.mkdir(parents=True, exist_ok=True)
     return cache

@@ -309,11 +309,27 @@ def shifted_add(
     shift: int,
     total: SignalLike,
 ) -> Instances:
-    """``x + (y << shift)``, registered."""
+    """``x + (y << shift)``, registered (and wrapped to `total`'s width)."""
+    if len(x) < len(total):
+
+        @always_seq(clk.posedge, reset=rst)
+        def add() -> None:
+            if advance:
+                total.next = x + (y << shift)
+
+        return add
+    # `total` is no wider than `x`: MyHDL's VHDL would then shift `y` within its own width,
+    # losing its top bits. The sum is formed in a variable wide enough, then wrapped to `total`.
+    bits = max(len(x), len(y) + shift) + 1
+    kept = len(total)
 
     @always_seq(clk.posedge, reset=rst)
-    def add() -> None:
+    def add_wrapped() -> None:
         if advance:
-            total.next = x + (y << shift)
+            wide = intbv(0, min=-(1 << (bits - 1)), max=1 << (bits - 1))
+            wide[:] = y
+            wide[:] = wide << shift
+            wide[:] = wide + x
+            total.next = wide[kept:].signed()
 
-    return add
+    return add_wrapped

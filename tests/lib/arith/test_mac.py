@@ -247,3 +247,22 @@ def test_a_wide_exact_product_keeps_every_dsp48_registered_and_the_path_short(tm
     assert len(mapped.dsp_registers) == 6  # 2 x 3 limbs of 24 x 17 bits
     assert all(r["MREG"] == 1 and r["PREG"] == 1 for r in mapped.dsp_registers)
     assert mapped.arrival_ps <= 5000  # half the period at 100 MHz
+
+
+@pytest.mark.parametrize("width", [26, 46, 50])
+def test_converted_exact_multiply_gives_the_exact_product(tmp_path, width):
+    # at 26 and 50 bits the last sum is no wider than its first operand (the VHDL once lost
+    # the shifted operand's top bits there)
+    fmt = FixedFormat(width, 0)
+    signals = ports(fmt)
+    signals["product"] = FixedFormat(2 * width, 0).signal()
+    files = convert_myhdl(
+        exact_with_handshake(*(signals[n] for n in MULTIPLY_ORDER)), "exact", tmp_path / "hdl"
+    )
+    rng = np.random.default_rng(width)
+    a = [fmt.min_raw, fmt.max_raw, -5, *raw_values(rng, fmt, 30).tolist()]
+    b = [fmt.min_raw, fmt.min_raw, 7, *raw_values(rng, fmt, 30).tolist()]
+    inputs = {"a": [unsigned(x, width) for x in a], "b": [unsigned(y, width) for y in b]}
+    run = run_handshake(files, "exact", inputs, ["product"], tmp_path)
+    got = [signed(v, 2 * width) for v in run.outputs["product"]]
+    assert got == [x * y for x, y in zip(a, b, strict=True)]

@@ -11,12 +11,12 @@ from myhdl import ResetSignal, Signal, block
 
 from rfc.lib.arith.mac import multiply, multiply_accumulate
 from rfc.lib.arith.mac_hdl import (
-    MAC_LATENCY,
     MULTIPLY_LATENCY,
     exact_multiply,
     exact_multiply_stages,
     fixed_mac,
     fixed_multiply,
+    mac_latency,
 )
 from rfc.lib.arith.pipeline import delay_line, stage_register, stall_control
 from rfc.lib.fixed import FixedFormat
@@ -138,7 +138,7 @@ def test_myhdl_mac_matches_the_model(width, data):
         seed=data.draw(st.integers(0, 1000)),
     )
     assert run.outputs["total"] == running_sums(pairs, firsts, fmt)
-    assert min(run.latencies) == MAC_LATENCY
+    assert min(run.latencies) == mac_latency(fmt)
 
 
 @pytest.mark.parametrize("mac", [False, True], ids=["multiply", "mac"])
@@ -160,7 +160,7 @@ def test_converted_vhdl_matches_the_model_under_backpressure(tmp_path, mac):
         inputs["first"] = [int(f) for f in firsts]
     run = run_handshake(files, output, inputs, [output], tmp_path)
     assert [signed(v, 50) for v in run.outputs[output]] == want
-    assert min(run.latencies) == (MAC_LATENCY if mac else MULTIPLY_LATENCY)
+    assert min(run.latencies) == (mac_latency(WIDE) if mac else MULTIPLY_LATENCY)
 
 
 @pytest.mark.parametrize("block", [fixed_multiply, fixed_mac])

@@ -17,8 +17,9 @@ from myhdl import Signal, always, always_comb, always_seq, block, intbv
 
 from rfc.lib.arith.engine import Op, Program, latencies, write_delay
 from rfc.lib.arith.mac_hdl import mac_pipeline
-from rfc.lib.arith.pipeline import data_delay, delay_line
+from rfc.lib.arith.pipeline import data_delay, delay_line, stage_register
 from rfc.lib.arith.sincos_hdl import sincos_iterative
+from rfc.lib.converters.wiring import follow
 from rfc.lib.fixed.pipeline import fixed_to_float_pipeline, float_to_fixed_pipeline
 from rfc.lib.types import Instances, SignalLike
 
@@ -102,8 +103,12 @@ def engine(
         for i, source in enumerate(inputs)
     ]
     storing = [
-        output_stage(clk, rst, shift_out, chain_out[i + 1], chain_out[i], port)
-        for i, port in enumerate(outputs)
+        stage_register(clk, rst, shift_out, chain_out[i + 1], chain_out[i])
+        for i in range(program.outputs)
+    ]
+    storing += [
+        follow(stage, port)
+        for stage, port in zip(chain_out[: program.outputs], outputs, strict=True)
     ]
 
     # LOAD and STORE: through the pipelined converters, or straight for raw words.
@@ -120,7 +125,11 @@ def engine(
             delay_line(clk, rst, always_on, storing_now, shift_out, delays.store),
         ]
     else:
-        conversions = [copy(head_in, loaded), copy(read_a, stored), copy(storing_now, shift_out)]
+        conversions = [
+            follow(head_in, loaded),
+            follow(read_a, stored),
+            follow(storing_now, shift_out),
+        ]
 
     # The multiply-accumulate pipeline, and the write flag and address beside it.
     mac_valid, mac_done, mac_result = Signal(bool(0)), Signal(bool(0)), fmt.signal()
@@ -270,9 +279,7 @@ def engine(
             elif sc_out_valid:
                 waiting.next = False
 
-    @always_comb
-    def chain_tail() -> None:
-        tail_out.next = stored
+    chain_tail = follow(stored, tail_out)
 
     return (loading, storing, conversions, mac, mac_writes, units, next_step, fetch, lookup,
             read, hold_read, control, select_write, write, sequence, chain_tail)  # fmt: skip
@@ -298,37 +305,3 @@ def chain_stage(
             stage.next = following
 
     return hold
-
-
-@block
-def output_stage(
-    clk: SignalLike,
-    rst: SignalLike,
-    shift: SignalLike,
-    following: SignalLike,
-    stage: SignalLike,
-    port: SignalLike,
-) -> Instances:
-    """One element of the output chain, shown on its port."""
-
-    @always_seq(clk.posedge, reset=rst)
-    def hold() -> None:
-        if shift:
-            stage.next = following
-
-    @always_comb
-    def show() -> None:
-        port.next = stage
-
-    return hold, show
-
-
-@block
-def copy(source: SignalLike, target: SignalLike) -> Instances:
-    """``target = source`` (comb)."""
-
-    @always_comb
-    def assign() -> None:
-        target.next = source
-
-    return assign

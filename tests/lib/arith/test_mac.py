@@ -18,7 +18,7 @@ from rfc.lib.arith.mac_hdl import (
     fixed_multiply,
     mac_latency,
 )
-from rfc.lib.arith.pipeline import delay_line, stage_register, stall_control
+from rfc.lib.arith.pipeline import handshakes, stage_register
 from rfc.lib.fixed import FixedFormat
 from rfc.toolchain import convert_myhdl
 from tests.lib.arith.synth import map_xc7
@@ -198,7 +198,7 @@ def test_a_one_slice_multiply_uses_all_four_dsp48_registers(tmp_path):
 @block
 def exact_with_handshake(clk, rst, in_valid, in_ready, a, b, out_valid, out_ready, product):
     """`exact_multiply` with its valid bit in a delay line beside it and one stall enable."""
-    advance, valid_last = Signal(bool(0)), Signal(bool(0))
+    advance = Signal(bool(0))
     stages = exact_multiply_stages(len(a), len(b))
     a_reg, b_reg = Signal(a.val), Signal(b.val)
     valid_in = Signal(bool(0))
@@ -207,9 +207,8 @@ def exact_with_handshake(clk, rst, in_valid, in_ready, a, b, out_valid, out_read
         for source, target in ((a, a_reg), (b, b_reg), (in_valid, valid_in))
     ]
     datapath = exact_multiply(clk, rst, advance, a_reg, b_reg, product)
-    valid = delay_line(clk, rst, advance, valid_in, valid_last, stages)
-    control = stall_control(valid_last, out_ready, advance, in_ready, out_valid)
-    return operands, datapath, valid, control
+    control = handshakes(clk, rst, valid_in, in_ready, out_valid, out_ready, advance, stages)
+    return operands, datapath, control
 
 
 @settings(max_examples=8)

@@ -25,6 +25,7 @@ FLOAT_TO_FIXED_LATENCY = FLOAT_TO_FIXED_STAGES - 1
 FIXED_TO_FLOAT_LATENCY = FIXED_TO_FLOAT_STAGES - 1
 
 
+# Signatures alike across rfc.lib blocks are its handshake convention, not a repeated idea.
 @block
 def float_to_fixed_pipelined(
     clk: SignalLike,

@@ -28,6 +28,7 @@ def _unsigned(limit: int) -> Signal:
     return Signal(intbv(0, min=0, max=max(limit, 2)))
 
 
+# Signatures alike across rfc.lib blocks are its handshake convention, not a repeated idea.
 @block
 def engine(
     clk: SignalLike,

@@ -38,6 +38,7 @@ def _signed(bits: int) -> Signal:
     return Signal(intbv(0, min=-(1 << (bits - 1)), max=1 << (bits - 1)))
 
 
+# Signatures alike across rfc.lib blocks are its handshake convention, not a repeated idea.
 @block
 def fixed_multiply(
     clk: SignalLike,

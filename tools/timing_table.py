@@ -50,8 +50,9 @@ HANDSHAKE_OUT = ("out_valid", "out_ready")
 TO_FIXED = (FixedFormat(46, 44), FixedFormat(55, 53), FixedFormat(50, 44))
 #: fixed → float64 formats: the two quaternion cores' angles, the Franka engine's words.
 TO_FLOAT = (FixedFormat(49, 46), FixedFormat(63, 60), FixedFormat(50, 44))
-#: Exact products' operands: the pipelined and the iterative quaternion cores' components.
-PRODUCTS = (FixedFormat(46, 44), FixedFormat(55, 53))
+#: Exact products' operands: the pipelined and the iterative quaternion cores' components, the
+#: Franka engine's words (its multiply-accumulate's product).
+PRODUCTS = (FixedFormat(46, 44), FixedFormat(55, 53), FixedFormat(50, 44))
 #: The pipelined and the iterative quaternion cores' CORDICs.
 CORDICS = (
     CordicConfig(width=50, iterations=38, angle_frac=46),

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from myhdl import Signal, block
 
-from rfc.lib.arith.pipeline import delay_line, stall_control
+from rfc.lib.arith.pipeline import handshakes
 from rfc.lib.fixed import FixedFormat
 from rfc.lib.fixed.pipeline import (
     FIXED_TO_FLOAT_STAGES,
@@ -25,6 +25,7 @@ FLOAT_TO_FIXED_LATENCY = FLOAT_TO_FIXED_STAGES - 1
 FIXED_TO_FLOAT_LATENCY = FIXED_TO_FLOAT_STAGES - 1
 
 
+# Signatures alike across rfc.lib blocks are its handshake convention, not a repeated idea.
 @block
 def float_to_fixed_pipelined(
     clk: SignalLike,
@@ -54,11 +55,11 @@ def float_to_fixed_pipelined(
         invalid: Output, the value was a NaN (`raw` is 0).
         fmt: The fixed-point format.
     """
-    advance, valid_last = Signal(bool(0)), Signal(bool(0))
+    advance = Signal(bool(0))
     datapath = float_to_fixed_pipeline(clk, advance, bits, raw, overflow, invalid, fmt)
-    valid = delay_line(clk, rst, advance, in_valid, valid_last, FLOAT_TO_FIXED_STAGES)
-    control = stall_control(valid_last, out_ready, advance, in_ready, out_valid)
-    return datapath, valid, control
+    stages = FLOAT_TO_FIXED_STAGES
+    control = handshakes(clk, rst, in_valid, in_ready, out_valid, out_ready, advance, stages)
+    return datapath, control
 
 
 @block
@@ -86,8 +87,8 @@ def fixed_to_float_pipelined(
         bits: Output, 64-bit IEEE-754 pattern.
         fmt: The fixed-point format.
     """
-    advance, valid_last = Signal(bool(0)), Signal(bool(0))
+    advance = Signal(bool(0))
     datapath = fixed_to_float_pipeline(clk, advance, raw, bits, fmt)
-    valid = delay_line(clk, rst, advance, in_valid, valid_last, FIXED_TO_FLOAT_STAGES)
-    control = stall_control(valid_last, out_ready, advance, in_ready, out_valid)
-    return datapath, valid, control
+    stages = FIXED_TO_FLOAT_STAGES
+    control = handshakes(clk, rst, in_valid, in_ready, out_valid, out_ready, advance, stages)
+    return datapath, control

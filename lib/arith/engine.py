@@ -5,7 +5,8 @@ constant, multiply-accumulate two words into a third, take the cosine and sine o
 a word to the outputs. `ProgramBuilder` writes programs (a 4x4 transform product, forward
 kinematics) and schedules them for the hardware in `rfc.lib.arith.engine_hdl`: one step per
 cycle, one multiply-accumulate unit, and no-ops wherever a step would read a word before the
-pipeline has written it. `run` computes what the hardware computes, bit for bit.
+pipeline has written it, with the latencies of the hardware's pipelines (`Latencies`). `run`
+computes what the hardware computes, bit for bit.
 """
 
 from __future__ import annotations
@@ -18,12 +19,10 @@ from typing import Any
 import numpy as np
 
 from rfc.lib.arith.mac import MAC_GUARD_BITS, multiply_accumulate
+from rfc.lib.arith.mac_hdl import mac_stages
 from rfc.lib.arith.sincos import SinCosConfig, sincos
 from rfc.lib.fixed import FixedFormat, fixed_to_float, float_to_fixed
-
-#: Cycles from issuing the last product of a sum to the cycle its result is written: operand,
-#: product, sum and rounding registers (`rfc.lib.arith.mac_hdl.MAC_LATENCY` + 1).
-MAC_WRITE_DELAY = 4
+from rfc.lib.fixed.pipeline import FIXED_TO_FLOAT_STAGES, FLOAT_TO_FIXED_STAGES
 
 
 class Op(IntEnum):
@@ -62,6 +61,32 @@ class Step:
 
 
 @dataclass(frozen=True)
+class Latencies:
+    """Cycles from issuing a step to its effect: the registers of the engine's pipelines.
+
+    Attributes:
+        load: From a LOAD to the cycle its word is written (the float64 → fixed converter's
+            registers; 0 for raw words).
+        mac: From a sum's last product to the cycle the sum is written (`mac_stages`).
+        store: From a STORE to the cycle its value enters the outputs (a read register and the
+            fixed → float64 converter's registers; 0 for raw words).
+    """
+
+    load: int
+    mac: int
+    store: int
+
+
+def latencies(fmt: FixedFormat, float_io: bool) -> Latencies:
+    """The engine's latencies for words of `fmt`, with float64 inputs and outputs or raw ones."""
+    return Latencies(
+        load=FLOAT_TO_FIXED_STAGES if float_io else 0,
+        mac=mac_stages(fmt),
+        store=1 + FIXED_TO_FLOAT_STAGES if float_io else 0,
+    )
+
+
+@dataclass(frozen=True)
 class Program:
     """A scheduled program and the engine it runs on.
 
@@ -90,11 +115,11 @@ class Program:
     def cycles(self) -> int:
         """Cycles from taking a message to offering its result.
 
-        A step per cycle; each SINCOS also waits for the iterative unit (its latency and one
-        handshake cycle).
+        A step per cycle; each SINCOS also waits for the iterative unit (its latency, a cycle
+        that registers the angle and a handshake cycle).
         """
         waits = sum(step.op == Op.SINCOS for step in self.steps)
-        return len(self.steps) + waits * (self.sincos.latency + 1 if self.sincos else 0)
+        return len(self.steps) + waits * (self.sincos.latency + 2 if self.sincos else 0)
 
 
 def wrap(raw: Any, width: int) -> Any:
@@ -220,8 +245,9 @@ class ProgramBuilder:
 
     def build(self) -> Program:
         """The program, scheduled: no-ops where a step must wait, DONE at the end."""
+        delays = latencies(self.fmt, self.float_io)
         return Program(
-            steps=(*schedule(self._steps), Step(Op.DONE)),
+            steps=tuple(schedule([*self._steps, Step(Op.DONE)], delays)),
             constants=tuple(self._constants),
             size=self._size,
             inputs=self._inputs,
@@ -232,41 +258,46 @@ class ProgramBuilder:
         )
 
 
-#: Steps that write a word on their own cycle.
-WORD_WRITERS = (Op.LOAD, Op.CONST, Op.PUT_COS, Op.PUT_SIN)
+def write_delay(step: Step, delays: Latencies) -> int | None:
+    """Cycles from issuing `step` to the write of its word; None when it writes none."""
+    if step.op == Op.MAC:
+        return delays.mac if step.last else None
+    if step.op == Op.LOAD:
+        return delays.load
+    return 0 if step.op in (Op.CONST, Op.PUT_COS, Op.PUT_SIN) else None
 
 
-def schedule(steps: list[Step]) -> list[Step]:
+def schedule(steps: list[Step], delays: Latencies) -> list[Step]:
     """Steps in order, one per cycle, with no-ops so that every read follows its write.
 
-    A word written on cycle w can be read from cycle w + 1. LOAD, CONST and PUT_* write on
-    their own cycle; a sum on the cycle `MAC_WRITE_DELAY` after its last product. The memory
-    has one write port, so no two writes share a cycle. SINCOS waits until no sum is in flight
-    (the engine stalls for its result, so later cycles are not known statically).
+    A word written on cycle w can be read from cycle w + 1; a step writes `write_delay` cycles
+    after its issue. The memory has one write port, so no two writes share a cycle. SINCOS
+    waits until no write is in flight (the engine stalls for its result, so later cycles are
+    not known statically; stores run on regardless), and DONE until every write and every
+    store has landed.
     """
     ready: dict[int, int] = {}
     writes: set[int] = set()
     last_write = -1
+    last_store = -1
     cycle = 0
     out: list[Step] = []
     for step in steps:
         reads = {Op.MAC: (step.a, step.b), Op.SINCOS: (step.a,), Op.STORE: (step.a,)}
         start = max([cycle, *(ready.get(word, 0) for word in reads.get(step.op, ()))])
-        if step.op == Op.SINCOS:
+        if step.op in (Op.SINCOS, Op.DONE):
             start = max(start, last_write + 1)
-        write = (
-            MAC_WRITE_DELAY
-            if step.op == Op.MAC and step.last
-            else 0
-            if step.op in WORD_WRITERS
-            else None
-        )
+        if step.op == Op.DONE:
+            start = max(start, last_store)
+        write = write_delay(step, delays)
         if write is not None:
             while start + write in writes:
                 start += 1
             writes.add(start + write)
             ready[step.dst] = start + write + 1
             last_write = max(last_write, start + write)
+        if step.op == Op.STORE:
+            last_store = start + delays.store
         out += [Step(Op.NOP)] * (start - cycle)
         out.append(step)
         cycle = start + 1

@@ -1,20 +1,26 @@
 """The MyHDL engine that runs a `rfc.lib.arith.engine.Program`, one step per cycle.
 
 One multiply-accumulate pipeline (`mac_pipeline`), an optional iterative sine/cosine unit, one
-float64 → fixed and one fixed → float64 converter, all shared by every step; the words live in
-a memory with two read ports and one write port (distributed RAM). A message's inputs are
-captured whole into a shift chain that LOAD steps consume; STORE steps shift results into an
-output chain that holds them until taken. The engine takes a message only while idle.
+pipelined float64 → fixed and one fixed → float64 converter, all shared by every step; the
+words live in a memory with two read ports and one write port (distributed RAM). A message's
+inputs are captured whole into a shift chain that LOAD steps consume; STORE steps shift results
+into an output chain that holds them until taken. Each step's fields are registered from the
+program's ROM one cycle ahead, and every unit is pipelined (`rfc.lib.arith.engine.Latencies`:
+the schedule writes each word when its pipeline delivers it), so no cycle holds more than one
+of a ROM lookup, a memory read, a wide adder or a conversion stage. The engine takes a message
+only while idle.
 """
 
 from __future__ import annotations
 
 from myhdl import Signal, always, always_comb, always_seq, block, intbv
 
-from rfc.lib.arith.engine import WORD_WRITERS, Op, Program
+from rfc.lib.arith.engine import Op, Program, latencies, write_delay
 from rfc.lib.arith.mac_hdl import mac_pipeline
+from rfc.lib.arith.pipeline import data_delay, delay_line, stage_register
 from rfc.lib.arith.sincos_hdl import sincos_iterative
-from rfc.lib.fixed.hdl import fixed_to_float, float_to_fixed
+from rfc.lib.converters.wiring import follow
+from rfc.lib.fixed.pipeline import fixed_to_float_pipeline, float_to_fixed_pipeline
 from rfc.lib.types import Instances, SignalLike
 
 
@@ -22,6 +28,7 @@ def _unsigned(limit: int) -> Signal:
     return Signal(intbv(0, min=0, max=max(limit, 2)))
 
 
+# Signatures alike across rfc.lib blocks are its handshake convention, not a repeated idea.
 @block
 def engine(
     clk: SignalLike,
@@ -53,6 +60,7 @@ def engine(
         raise ValueError(
             f"the program takes {program.inputs} inputs and gives {program.outputs} outputs"
         )
+    delays = latencies(fmt, program.float_io)
 
     def io_signal() -> Signal:
         return Signal(intbv(0)[64:]) if program.float_io else fmt.signal()
@@ -66,21 +74,23 @@ def engine(
     last_rom = tuple(int(s.last) for s in steps)
     const_rom = program.constants or (0,)
     index_rom = tuple(s.a if s.op == Op.CONST else 0 for s in steps)
-    writes_rom = tuple(int(s.op in WORD_WRITERS) for s in steps)
+    # Steps that write their word on their own cycle (the others go through a pipeline).
+    now_rom = tuple(int(write_delay(s, delays) == 0) for s in steps)
     # Operation codes as plain ints: MyHDL converts names bound to ints, not enum members.
     mac_op, load_op, const_op, store_op = int(Op.MAC), int(Op.LOAD), int(Op.CONST), int(Op.STORE)
     done_op, sincos_op, cos_op = int(Op.DONE), int(Op.SINCOS), int(Op.PUT_COS)
 
-    pc = _unsigned(len(steps))
+    pc, pc_next = _unsigned(len(steps)), _unsigned(len(steps))
     op = _unsigned(len(Op))
     ra, rb, dst = _unsigned(program.size), _unsigned(program.size), _unsigned(program.size)
-    first, last, writes_word = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
+    first, last, writes_now = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
     const_index = _unsigned(len(const_rom))
     const_value = fmt.signal()
-    running, full, waiting = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
-    capture, shift_in, shift_out = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
+    running, full = Signal(bool(0)), Signal(bool(0))
+    armed, waiting = Signal(bool(0)), Signal(bool(0))
+    capture, shift_in, shift_out, storing_now = (Signal(bool(0)) for _ in range(4))
     memory = [fmt.signal() for _ in range(max(program.size, 2))]
-    read_a, read_b = fmt.signal(), fmt.signal()
+    read_a, read_b, read_held = fmt.signal(), fmt.signal(), fmt.signal()
     put, put_value = Signal(bool(0)), fmt.signal()
     write_enable, write_address = Signal(bool(0)), _unsigned(program.size)
     write_data = fmt.signal()
@@ -94,27 +104,43 @@ def engine(
         for i, source in enumerate(inputs)
     ]
     storing = [
-        output_stage(clk, rst, shift_out, chain_out[i + 1], chain_out[i], port)
-        for i, port in enumerate(outputs)
+        stage_register(clk, rst, shift_out, chain_out[i + 1], chain_out[i])
+        for i in range(program.outputs)
     ]
+    storing += [
+        follow(stage, port)
+        for stage, port in zip(chain_out[: program.outputs], outputs, strict=True)
+    ]
+
+    # LOAD and STORE: through the pipelined converters, or straight for raw words.
+    always_on = Signal(bool(1))
     loaded, stored = fmt.signal(), io_signal()
+    loading_now, load_write, load_target = Signal(bool(0)), Signal(bool(0)), _unsigned(program.size)
     if program.float_io:
         overflow, invalid = Signal(bool(0)), Signal(bool(0))
-        to_fixed = float_to_fixed(head_in, loaded, overflow, invalid, fmt)
-        to_float = fixed_to_float(read_a, stored, fmt)
+        conversions = [
+            float_to_fixed_pipeline(clk, always_on, head_in, loaded, overflow, invalid, fmt),
+            delay_line(clk, rst, always_on, loading_now, load_write, delays.load),
+            data_delay(clk, always_on, dst, load_target, delays.load),
+            fixed_to_float_pipeline(clk, always_on, read_held, stored, fmt),
+            delay_line(clk, rst, always_on, storing_now, shift_out, delays.store),
+        ]
     else:
-        to_fixed = copy(head_in, loaded)
-        to_float = copy(read_a, stored)
+        conversions = [
+            follow(head_in, loaded),
+            follow(read_a, stored),
+            follow(storing_now, shift_out),
+        ]
 
-    # The multiply-accumulate pipeline, and the write address and flag beside it.
-    always_on = Signal(bool(1))
+    # The multiply-accumulate pipeline, and the write flag and address beside it.
     mac_valid, mac_done, mac_result = Signal(bool(0)), Signal(bool(0)), fmt.signal()
     mac = mac_pipeline(clk, rst, always_on, mac_valid, read_a, read_b, first, mac_done,
                        mac_result, fmt)  # fmt: skip
-    writes = [Signal(bool(0)) for _ in range(4)]
-    targets = [_unsigned(program.size) for _ in range(4)]
-    w1, w2, w3, w4 = writes
-    d1, d2, d3, d4 = targets
+    sum_ends, mac_write, mac_target = Signal(bool(0)), Signal(bool(0)), _unsigned(program.size)
+    mac_writes = [
+        delay_line(clk, rst, always_on, sum_ends, mac_write, delays.mac),
+        data_delay(clk, always_on, dst, mac_target, delays.mac),
+    ]
 
     # The sine/cosine unit, when the program uses one.
     cos_word, sin_word = fmt.signal(), fmt.signal()
@@ -145,7 +171,7 @@ def engine(
 
         @always_comb
         def narrow() -> None:
-            angle.next = read_a[angle_bits:].signed()
+            angle.next = read_held[angle_bits:].signed()
 
         @always_seq(clk.posedge, reset=rst)
         def take() -> None:
@@ -156,15 +182,25 @@ def engine(
         units += [narrow, take]
 
     @always_comb
-    def decode() -> None:
-        op.next = op_rom[pc]
-        ra.next = a_rom[pc]
-        rb.next = b_rom[pc]
-        dst.next = dst_rom[pc]
-        first.next = first_rom[pc]
-        last.next = last_rom[pc]
-        writes_word.next = writes_rom[pc]
-        const_index.next = index_rom[pc]
+    def next_step() -> None:
+        if not running or op == done_op:
+            pc_next.next = 0
+        elif op == sincos_op and not (waiting and sc_out_valid):
+            pc_next.next = pc
+        else:
+            pc_next.next = pc + 1
+
+    # The step's fields, registered from the ROM one cycle ahead.
+    @always(clk.posedge)
+    def fetch() -> None:
+        op.next = op_rom[pc_next]
+        ra.next = a_rom[pc_next]
+        rb.next = b_rom[pc_next]
+        dst.next = dst_rom[pc_next]
+        first.next = first_rom[pc_next]
+        last.next = last_rom[pc_next]
+        writes_now.next = now_rom[pc_next]
+        const_index.next = index_rom[pc_next]
 
     @always_comb
     def lookup() -> None:
@@ -175,17 +211,24 @@ def engine(
         read_a.next = memory[ra]
         read_b.next = memory[rb]
 
+    # The word read on the last cycle: the STORE converter's and the sine/cosine unit's input.
+    @always(clk.posedge)
+    def hold_read() -> None:
+        read_held.next = read_a
+
     @always_comb
     def control() -> None:
         in_ready.next = not running and not full
         out_valid.next = full
         capture.next = in_valid and not running and not full
         shift_in.next = running and op == load_op
-        shift_out.next = running and op == store_op
+        loading_now.next = running and op == load_op
+        storing_now.next = running and op == store_op
         mac_valid.next = running and op == mac_op
-        sc_in_valid.next = running and op == sincos_op and not waiting
+        sum_ends.next = running and op == mac_op and last
+        sc_in_valid.next = running and op == sincos_op and armed
         sc_out_ready.next = waiting
-        put.next = running and writes_word
+        put.next = running and writes_now
         if op == load_op:
             put_value.next = loaded
         elif op == const_op:
@@ -195,12 +238,16 @@ def engine(
         else:
             put_value.next = sin_word
 
+    # The schedule lets at most one of these write on a cycle.
     @always_comb
     def select_write() -> None:
-        write_enable.next = w4 or put
-        if w4:
-            write_address.next = d4
+        write_enable.next = mac_write or load_write or put
+        if mac_write:
+            write_address.next = mac_target
             write_data.next = mac_result
+        elif load_write:
+            write_address.next = load_target
+            write_data.next = loaded
         else:
             write_address.next = dst
             write_data.next = put_value
@@ -213,40 +260,30 @@ def engine(
 
     @always_seq(clk.posedge, reset=rst)
     def sequence() -> None:
-        w1.next = running and op == mac_op and last
-        d1.next = dst
-        w2.next = w1
-        d2.next = d1
-        w3.next = w2
-        d3.next = d2
-        w4.next = w3
-        d4.next = d3
+        pc.next = pc_next
         if not running:
             if full:
                 if out_ready:
                     full.next = False
             elif in_valid:
                 running.next = True
-                pc.next = 0
         elif op == done_op:
             running.next = False
             full.next = True
-            pc.next = 0
         elif op == sincos_op:
-            if not waiting:
+            # A cycle to register the angle, the handshake, then the wait for the result.
+            if not armed and not waiting:
+                armed.next = True
+            elif armed:
+                armed.next = False
                 waiting.next = True
             elif sc_out_valid:
                 waiting.next = False
-                pc.next = pc + 1
-        else:
-            pc.next = pc + 1
 
-    @always_comb
-    def chain_tail() -> None:
-        tail_out.next = stored
+    chain_tail = follow(stored, tail_out)
 
-    return (loading, storing, to_fixed, to_float, mac, units, decode, lookup, read, control,
-            select_write, write, sequence, chain_tail)  # fmt: skip
+    return (loading, storing, conversions, mac, mac_writes, units, next_step, fetch, lookup,
+            read, hold_read, control, select_write, write, sequence, chain_tail)  # fmt: skip
 
 
 @block
@@ -269,37 +306,3 @@ def chain_stage(
             stage.next = following
 
     return hold
-
-
-@block
-def output_stage(
-    clk: SignalLike,
-    rst: SignalLike,
-    shift: SignalLike,
-    following: SignalLike,
-    stage: SignalLike,
-    port: SignalLike,
-) -> Instances:
-    """One element of the output chain, shown on its port."""
-
-    @always_seq(clk.posedge, reset=rst)
-    def hold() -> None:
-        if shift:
-            stage.next = following
-
-    @always_comb
-    def show() -> None:
-        port.next = stage
-
-    return hold, show
-
-
-@block
-def copy(source: SignalLike, target: SignalLike) -> Instances:
-    """``target = source`` (comb)."""
-
-    @always_comb
-    def assign() -> None:
-        target.next = source
-
-    return assign

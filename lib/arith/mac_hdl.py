@@ -2,9 +2,12 @@
 
 The stages are the DSP48E1's own registers, so synthesis can fold them into the slice: operands
 (A/B registers), product (M register), product or sum (P register); a fabric register then
-rounds half up and saturates to the format. Both blocks take a pair every cycle (II = 1) and
-hold results until taken (the whole pipeline stalls). Latencies, in cycles from the input
-handshake to `out_valid`: `MULTIPLY_LATENCY`, `MAC_LATENCY`. Bit-exact with `rfc.lib.arith.mac`.
+rounds half up and saturates to the format. The multiply-accumulate forms its products with
+`exact_multiply` (DSP48E1-sized limbs and a registered adder tree), so no cycle holds more than
+one slice's product or one wide adder at any width. Both blocks take a pair every cycle
+(II = 1) and hold results until taken (the whole pipeline stalls). Latencies, in cycles from
+the input handshake to `out_valid`: `MULTIPLY_LATENCY`, `mac_latency`. Bit-exact with
+`rfc.lib.arith.mac`.
 """
 
 from __future__ import annotations
@@ -12,21 +15,30 @@ from __future__ import annotations
 from myhdl import Signal, always_comb, always_seq, block, intbv
 
 from rfc.lib.arith.mac import MAC_GUARD_BITS
-from rfc.lib.arith.pipeline import stage_register, stall_control
+from rfc.lib.arith.pipeline import delay_line, stage_register, stall_control
 from rfc.lib.fixed import FixedFormat
 from rfc.lib.types import Instances, SignalLike
 
 #: Operand (A/B), product (M), P and rounded-result registers: Yosys folds the first three into
 #: a DSP48E1 (AREG, BREG, MREG, PREG all 1) when the operands fit one slice (25 x 18 signed).
 MULTIPLY_LATENCY = 3
-#: Operand, product, sum and rounded-result registers.
-MAC_LATENCY = 3
+
+
+def mac_stages(fmt: FixedFormat) -> int:
+    """Registers a pair passes in `mac_pipeline`: operands, the exact product's, sum, result."""
+    return 3 + exact_multiply_stages(fmt.width, fmt.width)
+
+
+def mac_latency(fmt: FixedFormat) -> int:
+    """Cycles from `fixed_mac`'s input handshake to `out_valid` (the handshake loads a stage)."""
+    return mac_stages(fmt) - 1
 
 
 def _signed(bits: int) -> Signal:
     return Signal(intbv(0, min=-(1 << (bits - 1)), max=1 << (bits - 1)))
 
 
+# Signatures alike across rfc.lib blocks are its handshake convention, not a repeated idea.
 @block
 def fixed_multiply(
     clk: SignalLike,
@@ -136,52 +148,81 @@ def mac_pipeline(
 ) -> Instances:
     """The multiply-accumulate datapath without handshakes: it moves when `advance` is high.
 
-    A pair entering on a cycle with `advance` high comes out `MAC_LATENCY` advancing cycles
-    later, with `valid_out` marking cycles that carry a result.
+    A pair entering on a cycle with `advance` high comes out `mac_stages` advancing cycles
+    later, with `valid_out` marking cycles that carry a result. A new sum starts from half a
+    unit of the result, so the rounding is a shift and the saturation alone.
     """
+    stages = exact_multiply_stages(fmt.width, fmt.width)
     a1, b1 = fmt.signal(), fmt.signal()
     v1, f1, v2, f2, v3 = (Signal(bool(0)) for _ in range(5))
     product = _signed(2 * fmt.width)
-    total = _signed(2 * fmt.width + MAC_GUARD_BITS)
+    total, base = _signed(2 * fmt.width + MAC_GUARD_BITS), _signed(2 * fmt.width + MAC_GUARD_BITS)
+    half = _half(fmt)
     rounded = fmt.signal()
-    rounding = round_to_format(total, rounded, fmt)
+    multiply = exact_multiply(clk, rst, advance, a1, b1, product)
+    flags = [delay_line(clk, rst, advance, v1, v2, stages),
+             delay_line(clk, rst, advance, f1, f2, stages)]  # fmt: skip
+    saturation = saturate_to_format(total, rounded, fmt)
+
+    @always_comb
+    def start_or_continue() -> None:
+        if f2:
+            base.next = half
+        else:
+            base.next = total
 
     @always_seq(clk.posedge, reset=rst)
-    def stages() -> None:
+    def registers() -> None:
         if advance:
             a1.next = a
             b1.next = b
             v1.next = valid_in
             f1.next = first
-            product.next = a1 * b1
-            v2.next = v1
-            f2.next = f1
             if v2:
-                if f2:
-                    total.next = product
-                else:
-                    total.next = total + product
+                total.next = base + product
             v3.next = v2
             result.next = rounded
             valid_out.next = v3
 
-    return rounding, stages
+    return multiply, flags, saturation, start_or_continue, registers
+
+
+def _half(fmt: FixedFormat) -> Signal:
+    """Half a unit of `fmt` with ``2 * fmt.frac_bits`` fraction bits, as a signal.
+
+    Constants wider than 31 bits reach VHDL as the initial values of undriven signals.
+    """
+    shift = fmt.frac_bits
+    return Signal(intbv((1 << shift) >> 1, min=0, max=1 << shift))
 
 
 @block
 def round_to_format(wide: SignalLike, narrow: SignalLike, fmt: FixedFormat) -> Instances:
     """A value with ``2 * fmt.frac_bits`` fraction bits, rounded half up and saturated (comb)."""
-    bits = len(wide) + 1
+    half = _half(fmt)
+    biased = _signed(len(wide) + 1)
+
+    @always_comb
+    def add_half() -> None:
+        biased.next = wide + half
+
+    return add_half, saturate_to_format(biased, narrow, fmt)
+
+
+@block
+def saturate_to_format(biased: SignalLike, narrow: SignalLike, fmt: FixedFormat) -> Instances:
+    """A value with ``2 * fmt.frac_bits`` fraction bits and half a unit added, rounded (comb).
+
+    Rounding half up is then the shift alone; the result saturates to `fmt`'s range.
+    """
+    bits = len(biased)
     shift = fmt.frac_bits
-    # Constants wider than 31 bits reach VHDL as the initial values of undriven signals.
-    half = Signal(intbv((1 << shift) >> 1, min=0, max=1 << shift))
     low, high = fmt.signal(fmt.min_raw), fmt.signal(fmt.max_raw)
 
     @always_comb
-    def round_half_up() -> None:
+    def shift_and_saturate() -> None:
         v = intbv(0, min=-(1 << (bits - 1)), max=1 << (bits - 1))
-        v[:] = wide + half
-        v[:] = v >> shift
+        v[:] = biased >> shift
         if v < low:
             narrow.next = low
         elif v > high:
@@ -189,7 +230,7 @@ def round_to_format(wide: SignalLike, narrow: SignalLike, fmt: FixedFormat) -> I
         else:
             narrow.next = v
 
-    return round_half_up
+    return shift_and_saturate
 
 
 #: Operand limbs that fit one DSP48E1 multiplier (25 x 18 signed): unsigned low limbs of 24 and
@@ -309,11 +350,27 @@ def shifted_add(
     shift: int,
     total: SignalLike,
 ) -> Instances:
-    """``x + (y << shift)``, registered."""
+    """``x + (y << shift)``, registered (and wrapped to `total`'s width)."""
+    if len(x) < len(total):
+
+        @always_seq(clk.posedge, reset=rst)
+        def add() -> None:
+            if advance:
+                total.next = x + (y << shift)
+
+        return add
+    # `total` is no wider than `x`: MyHDL's VHDL would then shift `y` within its own width,
+    # losing its top bits. The sum is formed in a variable wide enough, then wrapped to `total`.
+    bits = max(len(x), len(y) + shift) + 1
+    kept = len(total)
 
     @always_seq(clk.posedge, reset=rst)
-    def add() -> None:
+    def add_wrapped() -> None:
         if advance:
-            total.next = x + (y << shift)
+            wide = intbv(0, min=-(1 << (bits - 1)), max=1 << (bits - 1))
+            wide[:] = y
+            wide[:] = wide << shift
+            wide[:] = wide + x
+            total.next = wide[kept:].signed()
 
-    return add
+    return add_wrapped

@@ -34,6 +34,28 @@ def stall_control(
 
 
 @block
+def handshakes(
+    clk: SignalLike,
+    rst: SignalLike,
+    in_valid: SignalLike,
+    in_ready: SignalLike,
+    out_valid: SignalLike,
+    out_ready: SignalLike,
+    advance: SignalLike,
+    stages: int,
+) -> Instances:
+    """Valid/ready for a datapath of `stages` registers that moves when `advance` is high.
+
+    The input's valid bit travels beside the data in a `delay_line`; `stall_control` drives
+    `advance` from the last stage's.
+    """
+    valid_last = Signal(bool(0))
+    valid = delay_line(clk, rst, advance, in_valid, valid_last, stages)
+    control = stall_control(valid_last, out_ready, advance, in_ready, out_valid)
+    return valid, control
+
+
+@block
 def stage_register(
     clk: SignalLike, rst: SignalLike, advance: SignalLike, source: SignalLike, target: SignalLike
 ) -> Instances:

@@ -42,6 +42,7 @@ def transform_program(fmt: FixedFormat) -> Program:
     return builder.build()
 
 
+# Signatures alike across rfc.lib blocks are its handshake convention, not a repeated idea.
 @block
 def transform_multiply(
     clk: SignalLike,

@@ -3,7 +3,8 @@
 `FixedFormat` names a signed two's-complement format; `float_to_fixed` / `fixed_to_float` in
 `ieee754` are the models (float64 travels as its 64-bit pattern), and the same names in `hdl`
 are the combinational MyHDL blocks that match them bit for bit; `pipeline` holds the same
-conversions cut into short register stages (a value every cycle at 100 MHz and beyond).
+conversions cut into short register stages (a value every cycle at 100 MHz and beyond);
+`layout` computes where the bits sit for both.
 """
 
 from rfc.lib.fixed.format import FixedFormat

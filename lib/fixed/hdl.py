@@ -10,16 +10,9 @@ from __future__ import annotations
 from myhdl import always_comb, block, concat, intbv
 
 from rfc.lib.fixed.format import FixedFormat
-from rfc.lib.fixed.ieee754 import (
-    EXPONENT_ALL_ONES,
-    EXPONENT_BIAS,
-    MANTISSA_BITS,
-    ROUNDING_BITS,
-    SIGNIFICAND_SHIFT,
-)
+from rfc.lib.fixed.ieee754 import EXPONENT_ALL_ONES, MANTISSA_BITS, ROUNDING_BITS
+from rfc.lib.fixed.layout import SIGNIFICAND_BITS, to_fixed_layout, to_float_layout
 from rfc.lib.types import Instances, SignalLike
-
-SIGNIFICAND_BITS = MANTISSA_BITS + 1
 
 
 @block
@@ -36,13 +29,9 @@ def float_to_fixed(
         fmt: The fixed-point format of `raw`.
     """
     width = fmt.width
-    # The significand is placed so that a right shift by `amount` leaves it scaled by
-    # 2**(frac_bits + ROUNDING_BITS) with ROUNDING_BITS below the rounding point.
-    field_bits = ROUNDING_BITS + width
-    placement = field_bits - SIGNIFICAND_BITS
-    # amount = (width - 53) - shift with shift = max(exponent, 1) - 1075 + frac_bits.
-    amount_base = width - SIGNIFICAND_BITS + SIGNIFICAND_SHIFT - fmt.frac_bits
-    amount_min = amount_base - EXPONENT_ALL_ONES
+    layout = to_fixed_layout(fmt)
+    field_bits, placement = layout.field_bits, layout.placement
+    amount_base, amount_min = layout.amount_base, layout.amount_min
     amount_max = amount_base
 
     @always_comb
@@ -107,11 +96,8 @@ def fixed_to_float(raw: SignalLike, bits: SignalLike, fmt: FixedFormat) -> Insta
         fmt: The fixed-point format of `raw`.
     """
     width = fmt.width
-    # Biased exponent of a value whose leading one sits at bit (width - 1 - leading_zeros).
-    exponent_base = width - 1 - fmt.frac_bits + EXPONENT_BIAS
-    # Zeros appended below narrow values so that a round bit and a sticky bit always exist.
-    padded_bits = max(width, SIGNIFICAND_BITS + 2)
-    excess = padded_bits - SIGNIFICAND_BITS
+    layout = to_float_layout(fmt)
+    exponent_base, padded_bits, excess = layout.exponent_base, layout.padded_bits, layout.excess
 
     @always_comb
     def convert() -> None:

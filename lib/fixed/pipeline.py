@@ -16,16 +16,10 @@ from __future__ import annotations
 from myhdl import Signal, always_seq, block, concat, intbv
 
 from rfc.lib.fixed.format import FixedFormat
-from rfc.lib.fixed.ieee754 import (
-    EXPONENT_ALL_ONES,
-    EXPONENT_BIAS,
-    MANTISSA_BITS,
-    ROUNDING_BITS,
-    SIGNIFICAND_SHIFT,
-)
+from rfc.lib.fixed.ieee754 import EXPONENT_ALL_ONES, MANTISSA_BITS, ROUNDING_BITS
+from rfc.lib.fixed.layout import SIGNIFICAND_BITS, to_fixed_layout, to_float_layout
 from rfc.lib.types import Instances, SignalLike
 
-SIGNIFICAND_BITS = MANTISSA_BITS + 1
 #: Registers of `float_to_fixed_pipeline`: decode, coarse shift, fine shift, round, sign.
 FLOAT_TO_FIXED_STAGES = 5
 #: Registers of `fixed_to_float_pipeline`: magnitude, leading zeros, normalize, round and pack.
@@ -64,13 +58,9 @@ def float_to_fixed_pipeline(
         fmt: The fixed-point format of `raw`.
     """
     width = fmt.width
-    # As in `hdl.float_to_fixed`: the significand placed at the top of a field of
-    # ROUNDING_BITS + width bits, shifted right by `amount`, leaves the value scaled by
-    # 2**(frac_bits + ROUNDING_BITS); a shift beyond the field leaves zero.
-    field_bits = ROUNDING_BITS + width
-    placement = field_bits - SIGNIFICAND_BITS
-    amount_base = width - SIGNIFICAND_BITS + SIGNIFICAND_SHIFT - fmt.frac_bits
-    amount_min = amount_base - EXPONENT_ALL_ONES
+    layout = to_fixed_layout(fmt)
+    field_bits, placement = layout.field_bits, layout.placement
+    amount_base, amount_min = layout.amount_base, layout.amount_min
 
     # Stage 1, decode: sign, significand, shift (clamped to the field), early flags.
     sign1, nan1, saturate1 = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
@@ -113,6 +103,8 @@ def float_to_fixed_pipeline(
             nan1.next = exponent == EXPONENT_ALL_ONES and bits[MANTISSA_BITS:0] != 0
             saturate1.next = exponent == EXPONENT_ALL_ONES or amount < 0
 
+    # Each stage copies the flags beside its data in its own process, on purpose: a shared
+    # block for them would add a process per flag and stage to every converted pipeline.
     @always_seq(clk.posedge, reset=None)
     def coarse_shift() -> None:
         if advance:
@@ -192,10 +184,8 @@ def fixed_to_float_pipeline(
         fmt: The fixed-point format of `raw`.
     """
     width = fmt.width
-    # As in `hdl.fixed_to_float`.
-    exponent_base = width - 1 - fmt.frac_bits + EXPONENT_BIAS
-    padded_bits = max(width, SIGNIFICAND_BITS + 2)
-    excess = padded_bits - SIGNIFICAND_BITS
+    layout = to_float_layout(fmt)
+    exponent_base, padded_bits, excess = layout.exponent_base, layout.padded_bits, layout.excess
 
     negative1, negative2, negative3 = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
     magnitude1, magnitude2 = _unsigned(width), _unsigned(width)

@@ -1,5 +1,6 @@
 """The shared engine through the 4x4 transform product: model against NumPy and exact sums,
-the MyHDL block and its VHDL (flat ports, GHDL) against the model."""
+the MyHDL block and its VHDL (flat ports, GHDL) against the model; a float64 engine with every
+unit, in MyHDL against the model and mapped by Yosys against the clock."""
 
 from __future__ import annotations
 
@@ -10,13 +11,25 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from myhdl import ResetSignal, Signal
+from myhdl import ResetSignal, Signal, intbv
 
-from rfc.lib.arith.engine import Op, ProgramBuilder, Step, run, schedule
+from rfc.lib.arith import SinCosConfig
+from rfc.lib.arith.engine import (
+    Latencies,
+    Op,
+    Program,
+    ProgramBuilder,
+    Step,
+    latencies,
+    run,
+    schedule,
+)
+from rfc.lib.arith.engine_hdl import engine
 from rfc.lib.arith.transform import transform_multiply, transform_program
-from rfc.lib.fixed import FixedFormat
+from rfc.lib.fixed import FixedFormat, bits_to_float, float_to_bits
 from rfc.toolchain import convert_myhdl
 from tests.lib.arith.flat import flat_ports, flat_top
+from tests.lib.arith.synth import map_xc7
 from tests.support.cosim import run_handshake, signed, unsigned
 from tests.support.myhdl_stream import simulate_stream
 
@@ -70,12 +83,23 @@ def test_the_schedule_waits_for_sums_and_never_writes_twice_in_a_cycle():
     builder.store(builder.dot([(square, x)]))
     steps = builder.build().steps
     ops = [s.op for s in steps]
-    # load; square; 4 no-ops until the square is written; the product; 4 no-ops; store; done.
-    assert ops == [Op.LOAD, Op.MAC, *[Op.NOP] * 4, Op.MAC, *[Op.NOP] * 4, Op.STORE, Op.DONE]
+    # load; square; no-ops until the square is written; the product; no-ops; store; done.
+    wait = [Op.NOP] * latencies(WORD, float_io=False).mac
+    assert ops == [Op.LOAD, Op.MAC, *wait, Op.MAC, *wait, Op.STORE, Op.DONE]
+    delays = Latencies(load=0, mac=4, store=0)
     clash = schedule(
-        [Step(Op.MAC, 0, 0, 1, True, True), *[Step(Op.LOAD, dst=2 + i) for i in range(5)]]
+        [Step(Op.MAC, 0, 0, 1, True, True), *[Step(Op.LOAD, dst=2 + i) for i in range(5)]], delays
     )
     assert [s.op for s in clash].count(Op.NOP) == 1  # the fifth load waits for the sum's write
+
+
+def test_the_schedule_waits_for_pipelined_loads_and_stores_before_done():
+    delays = Latencies(load=5, mac=4, store=3)
+    steps = [Step(Op.LOAD, dst=0), Step(Op.MAC, 0, 0, 1, True, True), Step(Op.STORE, a=1)]
+    ops = [s.op for s in schedule([*steps, Step(Op.DONE)], delays)]
+    # the load's word is written on cycle 5, the sum issued on 6 and written on 10, the store
+    # issued on 11 lands on 14, when DONE may end the message
+    assert ops == [Op.LOAD, *[Op.NOP] * 5, Op.MAC, *[Op.NOP] * 4, Op.STORE, *[Op.NOP] * 2, Op.DONE]
 
 
 def test_wrong_input_counts_and_long_sums_are_refused():
@@ -140,3 +164,79 @@ def test_converted_vhdl_with_flat_ports_matches_the_model(tmp_path):
     got = [[signed(result.outputs[f"c{i}"][n], 50) for i in range(12)] for n in range(8)]
     assert got == [run(program, m) for m in messages]
     assert set(result.latencies) == {program.cycles}
+
+
+def rotation_program() -> Program:
+    """Float64 in and out through every unit: (x, y) turned by an angle, and the angle's cosine."""
+    builder = ProgramBuilder(WORD, float_io=True, sincos=SinCosConfig(WORD.frac_bits))
+    angle, x, y = builder.load(), builder.load(), builder.load()
+    cos, sin = builder.cos_sin(angle)
+    minus_one = builder.constant(-(1 << WORD.frac_bits))
+    minus_sin = builder.dot([(sin, minus_one)])
+    builder.store(builder.dot([(cos, x), (minus_sin, y)]))
+    builder.store(builder.dot([(sin, x), (cos, y)]))
+    builder.store(cos)
+    return builder.build()
+
+
+ENGINE_ORDER = ("clk", "rst", "in_valid", "in_ready", "inputs", "out_valid", "out_ready",
+                "outputs")  # fmt: skip
+
+
+def float_engine_ports() -> dict:
+    def word() -> Signal:
+        return Signal(intbv(0)[64:])
+
+    return {
+        "clk": Signal(bool(0)),
+        "rst": ResetSignal(0, active=1, isasync=False),
+        "in_valid": Signal(bool(0)),
+        "in_ready": Signal(bool(0)),
+        "inputs": [word() for _ in range(3)],
+        "out_valid": Signal(bool(0)),
+        "out_ready": Signal(bool(0)),
+        "outputs": [word() for _ in range(3)],
+    }
+
+
+def test_a_float_engine_with_every_unit_matches_the_model_and_numpy():
+    program = rotation_program()
+    rng = np.random.default_rng(5)
+    values = [(a, x, y) for a, x, y in rng.uniform(-3, 3, (4, 3))]
+    messages = [[float_to_bits(float(v)) for v in m] for m in values]
+    flat = flat_ports(float_engine_ports())
+    run_ = simulate_stream(
+        flat_top(engine, ENGINE_ORDER, {"inputs": 3, "outputs": 3}, [program]),
+        list(flat.values()),
+        flat,
+        {f"inputs{i}": [m[i] for m in messages] for i in range(3)},
+        [f"outputs{i}" for i in range(3)],
+    )
+    got = [[run_.outputs[f"outputs{i}"][n] for i in range(3)] for n in range(len(messages))]
+    assert got == [run(program, m) for m in messages]
+    assert set(run_.latencies) == {program.cycles}
+    for (a, x, y), bits in zip(values, got, strict=True):
+        want = (x * np.cos(a) - y * np.sin(a), x * np.sin(a) + y * np.cos(a), np.cos(a))
+        assert np.allclose([bits_to_float(b) for b in bits], want, rtol=0, atol=1e-12)
+
+
+def products_program() -> Program:
+    """Float64 in and out through the converters and the multiply-accumulate unit."""
+    builder = ProgramBuilder(WORD, float_io=True)
+    a, x, y = builder.load(), builder.load(), builder.load()
+    minus_a = builder.dot([(a, builder.constant(-(1 << WORD.frac_bits)))])
+    builder.store(builder.dot([(a, x), (minus_a, y)]))
+    builder.store(builder.dot([(x, x), (a, y)]))
+    builder.store(a)
+    return builder.build()
+
+
+@pytest.mark.slow
+def test_a_float_engine_meets_100_mhz_with_margin(tmp_path):
+    # the Franka core's engine without its sine/cosine unit (timed on its own in
+    # lib/arith/timing.json): Q6.44 words, the float64 converters, the multiply-accumulate,
+    # the ROM and the memory; at most half a 100 MHz period of cell delay, with margin
+    flat = flat_ports(float_engine_ports())
+    top = flat_top(engine, ENGINE_ORDER, {"inputs": 3, "outputs": 3}, [products_program()])
+    files = convert_myhdl(top(**flat), "engine", tmp_path)
+    assert map_xc7(files[-1], "engine", tmp_path).arrival_ps <= 4800

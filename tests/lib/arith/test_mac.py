@@ -11,14 +11,14 @@ from myhdl import ResetSignal, Signal, block
 
 from rfc.lib.arith.mac import multiply, multiply_accumulate
 from rfc.lib.arith.mac_hdl import (
-    MAC_LATENCY,
     MULTIPLY_LATENCY,
     exact_multiply,
     exact_multiply_stages,
     fixed_mac,
     fixed_multiply,
+    mac_latency,
 )
-from rfc.lib.arith.pipeline import delay_line, stage_register, stall_control
+from rfc.lib.arith.pipeline import handshakes, stage_register
 from rfc.lib.fixed import FixedFormat
 from rfc.toolchain import convert_myhdl
 from tests.lib.arith.synth import map_xc7
@@ -138,7 +138,7 @@ def test_myhdl_mac_matches_the_model(width, data):
         seed=data.draw(st.integers(0, 1000)),
     )
     assert run.outputs["total"] == running_sums(pairs, firsts, fmt)
-    assert min(run.latencies) == MAC_LATENCY
+    assert min(run.latencies) == mac_latency(fmt)
 
 
 @pytest.mark.parametrize("mac", [False, True], ids=["multiply", "mac"])
@@ -160,7 +160,7 @@ def test_converted_vhdl_matches_the_model_under_backpressure(tmp_path, mac):
         inputs["first"] = [int(f) for f in firsts]
     run = run_handshake(files, output, inputs, [output], tmp_path)
     assert [signed(v, 50) for v in run.outputs[output]] == want
-    assert min(run.latencies) == (MAC_LATENCY if mac else MULTIPLY_LATENCY)
+    assert min(run.latencies) == (mac_latency(WIDE) if mac else MULTIPLY_LATENCY)
 
 
 @pytest.mark.parametrize("block", [fixed_multiply, fixed_mac])
@@ -198,7 +198,7 @@ def test_a_one_slice_multiply_uses_all_four_dsp48_registers(tmp_path):
 @block
 def exact_with_handshake(clk, rst, in_valid, in_ready, a, b, out_valid, out_ready, product):
     """`exact_multiply` with its valid bit in a delay line beside it and one stall enable."""
-    advance, valid_last = Signal(bool(0)), Signal(bool(0))
+    advance = Signal(bool(0))
     stages = exact_multiply_stages(len(a), len(b))
     a_reg, b_reg = Signal(a.val), Signal(b.val)
     valid_in = Signal(bool(0))
@@ -207,9 +207,8 @@ def exact_with_handshake(clk, rst, in_valid, in_ready, a, b, out_valid, out_read
         for source, target in ((a, a_reg), (b, b_reg), (in_valid, valid_in))
     ]
     datapath = exact_multiply(clk, rst, advance, a_reg, b_reg, product)
-    valid = delay_line(clk, rst, advance, valid_in, valid_last, stages)
-    control = stall_control(valid_last, out_ready, advance, in_ready, out_valid)
-    return operands, datapath, valid, control
+    control = handshakes(clk, rst, valid_in, in_ready, out_valid, out_ready, advance, stages)
+    return operands, datapath, control
 
 
 @settings(max_examples=8)
@@ -247,3 +246,22 @@ def test_a_wide_exact_product_keeps_every_dsp48_registered_and_the_path_short(tm
     assert len(mapped.dsp_registers) == 6  # 2 x 3 limbs of 24 x 17 bits
     assert all(r["MREG"] == 1 and r["PREG"] == 1 for r in mapped.dsp_registers)
     assert mapped.arrival_ps <= 5000  # half the period at 100 MHz
+
+
+@pytest.mark.parametrize("width", [26, 46, 50])
+def test_converted_exact_multiply_gives_the_exact_product(tmp_path, width):
+    # at 26 and 50 bits the last sum is no wider than its first operand (the VHDL once lost
+    # the shifted operand's top bits there)
+    fmt = FixedFormat(width, 0)
+    signals = ports(fmt)
+    signals["product"] = FixedFormat(2 * width, 0).signal()
+    files = convert_myhdl(
+        exact_with_handshake(*(signals[n] for n in MULTIPLY_ORDER)), "exact", tmp_path / "hdl"
+    )
+    rng = np.random.default_rng(width)
+    a = [fmt.min_raw, fmt.max_raw, -5, *raw_values(rng, fmt, 30).tolist()]
+    b = [fmt.min_raw, fmt.min_raw, 7, *raw_values(rng, fmt, 30).tolist()]
+    inputs = {"a": [unsigned(x, width) for x in a], "b": [unsigned(y, width) for y in b]}
+    run = run_handshake(files, "exact", inputs, ["product"], tmp_path)
+    got = [signed(v, 2 * width) for v in run.outputs["product"]]
+    assert got == [x * y for x, y in zip(a, b, strict=True)]

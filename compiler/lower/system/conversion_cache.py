@@ -180,7 +180,9 @@ def project_modules() -> list[Path]:
         if not name:
             continue
         path = Path(name).resolve()
-        if path.suffix == ".py" and not any(path.is_relative_to(p) for p in installed):
+        # a module whose file is gone (a test's or a wizard's temporary spec) is read no more
+        project = not any(path.is_relative_to(p) for p in installed)
+        if path.suffix == ".py" and path.is_file() and project:
             files.add(path)
     return sorted(files)
 

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import importlib
 import os
+import sys
 from pathlib import Path
 
 import myhdl._block
@@ -15,6 +17,7 @@ from rfc.lower.system.conversion_cache import (
     KEPT_VERSIONS,
     conversion_key,
     conversions_cached,
+    project_modules,
     rfc_digest,
     source_digest,
 )
@@ -142,3 +145,17 @@ def test_a_build_keeps_the_entries_of_the_rfc_versions_used_last_and_drops_older
     assert len(kept) == KEPT_VERSIONS
     assert rfc_digest()[:24] in kept
     assert f"version{KEPT_VERSIONS - 1}" not in kept
+
+
+def test_a_loaded_module_whose_file_is_gone_is_left_out_of_the_key(tmp_path, monkeypatch):
+    # a process that built a temporary Python spec before (a test run, the wizard) still holds it
+    gone = tmp_path / "spec_of_an_earlier_build.py"
+    gone.write_text("VALUE = 1\n")
+    monkeypatch.syspath_prepend(str(tmp_path))
+    importlib.import_module(gone.stem)
+    try:
+        assert gone.resolve() in project_modules()
+        gone.unlink()
+        assert gone.resolve() not in project_modules()
+    finally:
+        del sys.modules[gone.stem]

@@ -56,6 +56,7 @@ def spin(
     """
     try:
         import rclpy
+        from rclpy.executors import ExternalShutdownException
         from rclpy.utilities import try_shutdown
     except ImportError as exc:
         raise RfcError(
@@ -96,8 +97,8 @@ def spin(
     core.start()
     try:
         rclpy.spin(node)
-    except KeyboardInterrupt:
-        pass
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass  # Ctrl-C, or a signal rclpy's own handler turned into a shutdown of the context
     finally:
         account = core.stop()
         node.get_logger().info(f"rfc account: {account.to_json()}")

@@ -119,7 +119,7 @@ class Program:
         that registers the angle and a handshake cycle).
         """
         waits = sum(step.op == Op.SINCOS for step in self.steps)
-        return len(self.steps) + waits * (self.sincos.latency + 2 if self.sincos else 0)
+        return len(self.steps) + waits * (self.sincos.iterative_latency + 2 if self.sincos else 0)
 
 
 def wrap(raw: Any, width: int) -> Any:

@@ -97,8 +97,13 @@ class SinCosConfig:
 
     @property
     def latency(self) -> int:
-        """Cycles from the input handshake to valid output (both implementations)."""
+        """Cycles from the input handshake to valid output of the pipelined block."""
         return self.steps
+
+    @property
+    def iterative_latency(self) -> int:
+        """The same for the iterative block, which reduces the angle over two cycles."""
+        return self.steps + 1
 
     @cached_property
     def atan_table(self) -> tuple[int, ...]:

@@ -61,7 +61,7 @@ def test_robot_states_give_numpys_kinematics_in_the_logic(
     assert made.returncode == 0, made.stderr
     out = tmp_path / f"out{Path(bag).suffix}"
     # the FK core's signed rounding bounds are constants: Verilator once read them unsigned;
-    # the core computes ~1,630 cycles without DMA traffic, longer than the default drain
+    # the core computes ~1,650 cycles without DMA traffic, longer than the default drain
     # window: the logic's busy bits keep the replay waiting for it
     result = run_rfc("sim", EXAMPLE / spec, "--bag", tmp_path / bag, "--out", out, *reading)
     assert result.returncode == 0, result.stderr

@@ -220,23 +220,12 @@ def test_a_float_engine_with_every_unit_matches_the_model_and_numpy():
         assert np.allclose([bits_to_float(b) for b in bits], want, rtol=0, atol=1e-12)
 
 
-def products_program() -> Program:
-    """Float64 in and out through the converters and the multiply-accumulate unit."""
-    builder = ProgramBuilder(WORD, float_io=True)
-    a, x, y = builder.load(), builder.load(), builder.load()
-    minus_a = builder.dot([(a, builder.constant(-(1 << WORD.frac_bits)))])
-    builder.store(builder.dot([(a, x), (minus_a, y)]))
-    builder.store(builder.dot([(x, x), (a, y)]))
-    builder.store(a)
-    return builder.build()
-
-
 @pytest.mark.slow
 def test_a_float_engine_meets_100_mhz_with_margin(tmp_path):
-    # the Franka core's engine without its sine/cosine unit (timed on its own in
-    # lib/arith/timing.json): Q6.44 words, the float64 converters, the multiply-accumulate,
-    # the ROM and the memory; at most half a 100 MHz period of cell delay, with margin
+    # the Franka core's engine with every unit: Q6.44 words, the float64 converters, the
+    # multiply-accumulate, the iterative sine/cosine fed from the engine's registers, the ROM
+    # and the memory; at most half a 100 MHz period of cell delay, with margin
     flat = flat_ports(float_engine_ports())
-    top = flat_top(engine, ENGINE_ORDER, {"inputs": 3, "outputs": 3}, [products_program()])
+    top = flat_top(engine, ENGINE_ORDER, {"inputs": 3, "outputs": 3}, [rotation_program()])
     files = convert_myhdl(top(**flat), "engine", tmp_path)
     assert map_xc7(files[-1], "engine", tmp_path).arrival_ps <= 4800

@@ -31,8 +31,8 @@ MISSES_CLOCK: dict[str, str] = {}
 #: Example specs whose critical path still crosses from one block into another, and the two.
 CROSSES: dict[str, set[str]] = {}
 #: Example specs estimated by tools/bench_estimate.py only: a cold estimate of the Franka core
-#: takes about 12 minutes of CPU (docs/performance.md); it misses 100 MHz (5.62 ns, in its
-#: iterative sine/cosine; its engine without it: 4.31 ns, tests/lib/arith/test_engine.py).
+#: takes about 12 minutes of CPU (docs/performance.md); it meets 100 MHz (4.60 ns, in its
+#: publisher; its engine with every unit: tests/lib/arith/test_engine.py).
 BENCHMARKED = ("franka_fk/franka_fk.yaml", "franka_fk/franka_fk_ros2.yaml")
 ESTIMATED = (*MEETS_CLOCK, *MISSES_CLOCK)
 #: Example specs with HLS cores: Vitis HLS makes their netlists, so `--estimate` refuses them.

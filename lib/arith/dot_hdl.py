@@ -13,17 +13,13 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from myhdl import Signal, always_seq, block, intbv
+from myhdl import Signal, always_seq, block
 
 from rfc.lib.arith.dot import dot_latency, dot_sum_levels
 from rfc.lib.arith.mac_hdl import round_to_format
-from rfc.lib.arith.pipeline import delay_line, stage_register, stall_control
+from rfc.lib.arith.pipeline import delay_line, signed_signal, stage_register, stall_control
 from rfc.lib.fixed import FixedFormat
 from rfc.lib.types import Instances, SignalLike
-
-
-def _signed(bits: int) -> Signal:
-    return Signal(intbv(0, min=-(1 << (bits - 1)), max=1 << (bits - 1)))
 
 
 @block
@@ -119,7 +115,7 @@ def dot_pipeline(
     `b` holds signals or constant raw integers. A vector entering on a cycle with `advance`
     high comes out `dot_latency(len(a))` advancing cycles later, `valid_out` marking results.
     """
-    products = [_signed(2 * fmt.width) for _ in a]
+    products = [signed_signal(2 * fmt.width) for _ in a]
     parts = [
         constant_product(clk, rst, advance, x, y, p, fmt)
         if isinstance(y, int)
@@ -130,7 +126,7 @@ def dot_pipeline(
     for _ in range(dot_sum_levels(len(a))):
         sums = []
         for k in range(0, len(level) - 1, 2):
-            total = _signed(max(len(level[k]), len(level[k + 1])) + 1)
+            total = signed_signal(max(len(level[k]), len(level[k + 1])) + 1)
             parts.append(registered_add(clk, rst, advance, level[k], level[k + 1], total))
             sums.append(total)
         if len(level) % 2:

@@ -15,7 +15,7 @@ from __future__ import annotations
 from myhdl import Signal, always_comb, always_seq, block, intbv
 
 from rfc.lib.arith.mac import MAC_GUARD_BITS
-from rfc.lib.arith.pipeline import delay_line, stage_register, stall_control
+from rfc.lib.arith.pipeline import delay_line, signed_signal, stage_register, stall_control
 from rfc.lib.fixed import FixedFormat
 from rfc.lib.types import Instances, SignalLike
 
@@ -32,10 +32,6 @@ def mac_stages(fmt: FixedFormat) -> int:
 def mac_latency(fmt: FixedFormat) -> int:
     """Cycles from `fixed_mac`'s input handshake to `out_valid` (the handshake loads a stage)."""
     return mac_stages(fmt) - 1
-
-
-def _signed(bits: int) -> Signal:
-    return Signal(intbv(0, min=-(1 << (bits - 1)), max=1 << (bits - 1)))
 
 
 # Signatures alike across rfc.lib blocks are its handshake convention, not a repeated idea.
@@ -67,7 +63,7 @@ def fixed_multiply(
         fmt: The operands' and result's format.
     """
     a1, b1 = fmt.signal(), fmt.signal()
-    full, held = _signed(2 * fmt.width), _signed(2 * fmt.width)
+    full, held = signed_signal(2 * fmt.width), signed_signal(2 * fmt.width)
     v1, v2, v3, v4 = (Signal(bool(0)) for _ in range(4))
     advance = Signal(bool(0))
     rounded = fmt.signal()
@@ -155,8 +151,9 @@ def mac_pipeline(
     stages = exact_multiply_stages(fmt.width, fmt.width)
     a1, b1 = fmt.signal(), fmt.signal()
     v1, f1, v2, f2, v3 = (Signal(bool(0)) for _ in range(5))
-    product = _signed(2 * fmt.width)
-    total, base = _signed(2 * fmt.width + MAC_GUARD_BITS), _signed(2 * fmt.width + MAC_GUARD_BITS)
+    product = signed_signal(2 * fmt.width)
+    total = signed_signal(2 * fmt.width + MAC_GUARD_BITS)
+    base = signed_signal(2 * fmt.width + MAC_GUARD_BITS)
     half = _half(fmt)
     rounded = fmt.signal()
     multiply = exact_multiply(clk, rst, advance, a1, b1, product)
@@ -200,7 +197,7 @@ def _half(fmt: FixedFormat) -> Signal:
 def round_to_format(wide: SignalLike, narrow: SignalLike, fmt: FixedFormat) -> Instances:
     """A value with ``2 * fmt.frac_bits`` fraction bits, rounded half up and saturated (comb)."""
     half = _half(fmt)
-    biased = _signed(len(wide) + 1)
+    biased = signed_signal(len(wide) + 1)
 
     @always_comb
     def add_half() -> None:
@@ -267,10 +264,12 @@ def exact_multiply(
     registered two-input adders, so no path crosses a DSP and a wide adder at once.
     """
     a_limbs = [
-        _signed(bits + (0 if low + bits == len(a) else 1)) for low, bits in _limbs(len(a), _A_LIMB)
+        signed_signal(bits + (0 if low + bits == len(a) else 1))
+        for low, bits in _limbs(len(a), _A_LIMB)
     ]
     b_limbs = [
-        _signed(bits + (0 if low + bits == len(b) else 1)) for low, bits in _limbs(len(b), _B_LIMB)
+        signed_signal(bits + (0 if low + bits == len(b) else 1))
+        for low, bits in _limbs(len(b), _B_LIMB)
     ]
     cuts = [
         limb_cut(a, limb, low, bits)
@@ -284,7 +283,7 @@ def exact_multiply(
     for (a_low, _), x in zip(_limbs(len(a), _A_LIMB), a_limbs, strict=True):
         for (b_low, _), y in zip(_limbs(len(b), _B_LIMB), b_limbs, strict=True):
             single = len(a_limbs) == len(b_limbs) == 1
-            held = product if single else _signed(len(x) + len(y))
+            held = product if single else signed_signal(len(x) + len(y))
             parts.append(limb_product(clk, rst, advance, x, y, held))
             terms.append((held, a_low + b_low))
     while len(terms) > 1:
@@ -292,7 +291,7 @@ def exact_multiply(
         for k in range(0, len(terms) - 1, 2):
             (x, x_shift), (y, y_shift) = sorted(terms[k : k + 2], key=lambda t: t[1])
             wide = max(len(x), len(y) + y_shift - x_shift) + 1
-            total = product if len(terms) == 2 else _signed(wide)
+            total = product if len(terms) == 2 else signed_signal(wide)
             parts.append(shifted_add(clk, rst, advance, x, y, y_shift - x_shift, total))
             level.append((total, x_shift))
         if len(terms) % 2:

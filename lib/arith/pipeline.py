@@ -14,6 +14,11 @@ from myhdl import Signal, always_comb, always_seq, block, intbv
 from rfc.lib.types import Instances, SignalLike
 
 
+def signed_signal(bits: int, value: int = 0) -> SignalLike:
+    """A two's-complement register or wire of `bits` bits, `value` at reset."""
+    return Signal(intbv(value, min=-(1 << (bits - 1)), max=1 << (bits - 1)))
+
+
 @block
 def stall_control(
     valid_last: SignalLike,

@@ -15,14 +15,10 @@ from __future__ import annotations
 
 from myhdl import Signal, always_comb, always_seq, block, intbv
 
-from rfc.lib.arith.pipeline import stall_control
+from rfc.lib.arith.pipeline import signed_signal, stall_control
 from rfc.lib.arith.sincos import SinCosConfig
 from rfc.lib.cordic.stage import looped_rotation, micro_rotation
 from rfc.lib.types import Instances, SignalLike
-
-
-def _signed(bits: int, value: int = 0) -> Signal:
-    return Signal(intbv(value, min=-(1 << (bits - 1)), max=1 << (bits - 1)))
 
 
 @block
@@ -92,15 +88,15 @@ def sincos_iterative(
     rom = (*config.atan_table, 0)
     start_rom = (config.start,)
     first_turn_rom = (config.atan_table[0],)
-    turn = _signed(config.z_width)
+    turn = signed_signal(config.z_width)
     following = Signal(intbv(1, min=0, max=steps + 2))
-    xs, ys = _signed(config.xy_width), _signed(config.xy_width)
-    zs = _signed(config.z_width)
+    xs, ys = signed_signal(config.xy_width), signed_signal(config.xy_width)
+    zs = signed_signal(config.z_width)
     flip = Signal(bool(0))
     step = Signal(intbv(steps, min=0, max=steps + 1))
     full = Signal(bool(0))
-    z_start, flip_start = _signed(config.z_width), Signal(bool(0))
-    wrapped, wrapped_held = _signed(config.z_width + 2), _signed(config.z_width + 2)
+    z_start, flip_start = signed_signal(config.z_width), Signal(bool(0))
+    wrapped, wrapped_held = signed_signal(config.z_width + 2), signed_signal(config.z_width + 2)
     reducing = Signal(bool(0))
     wrap = wrap_half_turns(angle, wrapped, config)
     fold = fold_quarter_turns(wrapped_held, z_start, flip_start, config)
@@ -163,9 +159,9 @@ def sincos_pipelined(
     """A stage per micro-rotation with fixed shifts; ports as `sincos`."""
     count = config.steps + 1
     # Stage i holds the vector after i micro-rotations; stage 0 is the reduced input.
-    xs = [_signed(config.xy_width) for _ in range(count)]
-    ys = [_signed(config.xy_width) for _ in range(count)]
-    zs = [_signed(config.z_width) for _ in range(count)]
+    xs = [signed_signal(config.xy_width) for _ in range(count)]
+    ys = [signed_signal(config.xy_width) for _ in range(count)]
+    zs = [signed_signal(config.z_width) for _ in range(count)]
     valid = [Signal(bool(0)) for _ in range(count)]
     flips = [Signal(bool(0)) for _ in range(count)]
     x_first, y_first, z_first, valid_first, flip_first = xs[0], ys[0], zs[0], valid[0], flips[0]
@@ -173,7 +169,7 @@ def sincos_pipelined(
     valid_last = valid[last]
     advance = Signal(bool(0))
     start_rom = (config.start,)
-    z_start, flip_start = _signed(config.z_width), Signal(bool(0))
+    z_start, flip_start = signed_signal(config.z_width), Signal(bool(0))
     ends = sincos_ends(
         angle, z_start, flip_start, xs[last], ys[last], flips[last], cos, sin, config
     )
@@ -235,7 +231,7 @@ def sincos_reduction(
     angle: SignalLike, z_start: SignalLike, flip_start: SignalLike, config: SinCosConfig
 ) -> Instances:
     """The angle reduced to [-π/2, π/2] with the guard bits, and whether to negate (comb)."""
-    wrapped = _signed(config.z_width + 2)
+    wrapped = signed_signal(config.z_width + 2)
     wrap = wrap_half_turns(angle, wrapped, config)
     fold = fold_quarter_turns(wrapped, z_start, flip_start, config)
     return wrap, fold

@@ -18,14 +18,10 @@ from __future__ import annotations
 
 from myhdl import Signal, always_comb, always_seq, block, intbv
 
-from rfc.lib.arith.pipeline import stall_control
+from rfc.lib.arith.pipeline import signed_signal, stall_control
 from rfc.lib.cordic.config import CordicConfig
 from rfc.lib.cordic.stage import micro_rotation
 from rfc.lib.types import Instances, SignalLike
-
-
-def _signed(bits: int, value: int = 0) -> SignalLike:
-    return Signal(intbv(value, min=-(1 << (bits - 1)), max=1 << (bits - 1)))
 
 
 @block
@@ -92,17 +88,17 @@ def cordic_iterative(clk: SignalLike, rst: SignalLike, in_valid: SignalLike,
     y_top = internal - 1
     # The step counter rests at `iterations` while idle; that address reads 0.
     rom = (*config.atan_table, 0)
-    xs = _signed(internal)
-    ys = _signed(internal)
-    zs = _signed(config.angle_width)
-    x_shifted, y_shifted = _signed(internal), _signed(internal)
-    turn = _signed(config.angle_width)
+    xs = signed_signal(internal)
+    ys = signed_signal(internal)
+    zs = signed_signal(config.angle_width)
+    x_shifted, y_shifted = signed_signal(internal), signed_signal(internal)
+    turn = signed_signal(config.angle_width)
     step = Signal(intbv(iterations, min=0, max=iterations + 1))
     adding = Signal(bool(0))
     full = Signal(bool(0))
     level = Signal(bool(0))
-    x_turned, y_turned = _signed(internal), _signed(internal)
-    start_angle = _signed(config.angle_width)
+    x_turned, y_turned = signed_signal(internal), signed_signal(internal)
+    start_angle = signed_signal(config.angle_width)
     y_zero = Signal(bool(0))
     prerotate = cordic_prerotation(x, y, x_turned, y_turned, start_angle, y_zero, config)
 
@@ -183,16 +179,16 @@ def cordic_pipeline(clk: SignalLike, rst: SignalLike, advance: SignalLike, valid
     # Stage i holds the vector after i micro-rotations; stage 0 is the pre-rotated input. The
     # tag is (half turn, level): a level vector's angle is exactly its pre-rotation.
     count = config.iterations + 1
-    xs = [_signed(internal) for _ in range(count)]
-    ys = [_signed(internal) for _ in range(count)]
-    zs = [_signed(config.angle_width) for _ in range(count)]
+    xs = [signed_signal(internal) for _ in range(count)]
+    ys = [signed_signal(internal) for _ in range(count)]
+    zs = [signed_signal(config.angle_width) for _ in range(count)]
     valid = [Signal(bool(0)) for _ in range(count)]
     tags = [Signal(intbv(0)[2:]) for _ in range(count)]
     x_first, y_first, z_first, valid_first, tag_first = xs[0], ys[0], zs[0], valid[0], tags[0]
     last = count - 1
     x_last, z_last, valid_last, tag_last = xs[last], zs[last], valid[last], tags[last]
-    x_turned, y_turned = _signed(internal), _signed(internal)
-    start_angle = _signed(config.angle_width)
+    x_turned, y_turned = signed_signal(internal), signed_signal(internal)
+    start_angle = signed_signal(config.angle_width)
     y_zero = Signal(bool(0))
     turn = cordic_prerotation(x, y, x_turned, y_turned, start_angle, y_zero, config)
     pi_rom = (config.pi,)

@@ -217,6 +217,17 @@ def _refusal(port: str, pin: Port, what: str) -> RfcError:
     )
 
 
+def _wrong_argument(
+    argument: HlsArgument, top: str, found: str, expected: str, hint: str
+) -> RfcError:
+    """The refusal of one argument of the top function: what it is, what its port needs."""
+    return RfcError(
+        f"argument '{argument.name}' of HLS top function {top} is {found}; expected {expected}",
+        location=argument.location,
+        hint=hint,
+    )
+
+
 def _output(pin: Port) -> bool:
     return pin.direction is Direction.OUT
 
@@ -239,11 +250,8 @@ def _scalar_ports(
     for argument, (port, pin), want in zip(arguments, fields, expected, strict=True):
         if argument.output != _output(pin) or argument.bits != pin.bits:
             kind = "output" if argument.output else "input"
-            raise RfcError(
-                f"argument '{argument.name}' of HLS top function {top} is a {argument.bits}-bit "
-                f"{kind}; expected a {want}",
-                location=argument.location,
-                hint=SCALAR_ORDER,
+            raise _wrong_argument(
+                argument, top, f"a {argument.bits}-bit {kind}", f"a {want}", SCALAR_ORDER
             )
         core = CorePort(port, pin.name, argument.name, pin.bits, argument.output, pin.bits)
         ports.append(core)
@@ -283,22 +291,18 @@ def _struct_ports(
         # direction): the two refusals name what each form gets wrong.
         if argument.ctype != struct.type_name or argument.output != struct.output:
             kind = "pointer to " if argument.output else ""
-            raise RfcError(
-                f"argument '{argument.name}' of HLS top function {top} is a {kind}"
-                f"{argument.ctype}; expected {want}",
-                location=argument.location,
-                hint=STRUCT_ORDER,
-            )
+            raise _wrong_argument(argument, top, f"a {kind}{argument.ctype}", want, STRUCT_ORDER)
         pins = signatures[name]
         ports += _struct_fields(name, argument, pins)
         for stream, want in zip(struct.streams, struct.arguments()[1:], strict=True):
             argument = remaining.pop(0)
             if argument.ctype != f"hls::stream<{stream.element}>":
-                raise RfcError(
-                    f"argument '{argument.name}' of HLS top function {top} is a "
-                    f"{argument.ctype}; expected {want} for '{stream.path}'",
-                    location=argument.location,
-                    hint=STRUCT_ORDER,
+                raise _wrong_argument(
+                    argument,
+                    top,
+                    f"a {argument.ctype}",
+                    f"{want} for '{stream.path}'",
+                    STRUCT_ORDER,
                 )
             tdata = next(p for p in pins if p.role is PortRole.TDATA and p.path == stream.path)
             streams.append(

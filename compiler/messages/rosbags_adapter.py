@@ -561,32 +561,21 @@ def write_bag(
     middleware = check_bag_path(target, types.middleware)
     with tempfile.TemporaryDirectory(prefix=f".{target.name}.", dir=target.parent) as scratch:
         try:
+            writer: Rosbag1Writer | Rosbag2Writer
             if middleware is Middleware.ROS1:
-                result = Path(scratch) / f"out{target.suffix}"
-                with Rosbag1Writer(result) as writer:
-                    _fill(writer, types, topics, messages)
+                writer = Rosbag1Writer(Path(scratch) / f"out{target.suffix}")
             else:
                 mcap = target.suffix == ".mcap"
                 storage = StoragePlugin.MCAP if mcap else StoragePlugin.SQLITE3
-                directory = Path(scratch) / "out"
-                with Rosbag2Writer(directory, version=9, storage_plugin=storage) as writer:
-                    _fill(writer, types, topics, messages)
-                (result,) = directory.glob(f"*{target.suffix}")
+                writer = Rosbag2Writer(Path(scratch) / "out", version=9, storage_plugin=storage)
+            with writer:
+                connections = {
+                    topic: writer.add_connection(topic, msgtype, typestore=types._store)
+                    for topic, msgtype in topics.items()
+                }
+                for topic, stamp, data in messages:
+                    writer.write(connections[topic], stamp, data)
+            (result,) = Path(scratch).rglob(f"*{target.suffix}")  # a ROS 2 bag's is in out/
             result.replace(target)
         except (OSError, WriterError, Rosbag1WriterError) as exc:
             raise RfcError(f"cannot write bag '{target}': {exc}") from None
-
-
-# `write_bag`'s parameters minus the path: it fills a writer write_bag has opened.
-def _fill(
-    writer: Rosbag1Writer | Rosbag2Writer,
-    types: MessageTypes,
-    topics: Mapping[str, str],
-    messages: Iterable[tuple[str, int, bytes]],
-) -> None:
-    connections = {
-        topic: writer.add_connection(topic, msgtype, typestore=types._store)
-        for topic, msgtype in topics.items()
-    }
-    for topic, stamp, data in messages:
-        writer.write(connections[topic], stamp, data)

@@ -23,6 +23,7 @@ import sys
 import threading
 import time
 from collections.abc import Callable, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 
 from rfc.errors import RfcError
@@ -232,6 +233,41 @@ class NodeCore:
                 self.publish(message)
 
 
+@dataclass(frozen=True)
+class NodeSetup:
+    """What `main` hands the middleware's ``spin`` (`rfc.runtime.ros1`, `rfc.runtime.ros2`).
+
+    Attributes:
+        plan: The system's routes.
+        open_dma: Opens the DMA channels (the node does so before it joins the ROS graph).
+        queues: The callback queues.
+        screen: Refuse malformed messages on the processor (else the logic drops them).
+        status_period: Seconds between two readings of the logic's drop counters.
+        answer_timeout: Seconds the logic may take to accept a transfer.
+        ros_arguments: The command line's arguments for the ROS client library.
+    """
+
+    plan: RuntimePlan
+    open_dma: Callable[[], DmaChannels]
+    queues: QueueConfig
+    screen: bool
+    status_period: float
+    answer_timeout: float
+    ros_arguments: tuple[str, ...]
+
+    def core(self, dma: DmaChannels, publish: Publish, clock: Callable[[], int]) -> NodeCore:
+        """The node's core on `dma`, publishing with the middleware's `publish` and clock."""
+        return NodeCore(
+            self.plan,
+            dma,
+            publish,
+            self.queues,
+            clock,
+            screen=self.screen,
+            status_period=self.status_period,
+        )
+
+
 def parse_options(
     plan: RuntimePlan, argv: Sequence[str] | None
 ) -> tuple[argparse.Namespace, list[str]]:
@@ -292,8 +328,17 @@ def main(plan_path: Path, argv: Sequence[str] | None = None) -> None:
         else:
             from rfc.runtime.ros2 import spin
         options = DeviceOptions(args.device, args.mm2s, args.s2mm, args.bitstream, args.dma)
-        queues = QueueConfig(QueuePolicy(args.queue), args.depth)
-        spin(plan, lambda: open_transport(plan, options), queues, args, ros_arguments)
+        spin(
+            NodeSetup(
+                plan,
+                lambda: open_transport(plan, options),
+                QueueConfig(QueuePolicy(args.queue), args.depth),
+                screen=not args.send_malformed,
+                status_period=args.status_period,
+                answer_timeout=args.answer_timeout,
+                ros_arguments=tuple(ros_arguments),
+            )
+        )
     except RfcError as error:
         print(f"rfc node: {error}", file=sys.stderr)
         raise SystemExit(1) from None

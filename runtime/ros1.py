@@ -9,15 +9,11 @@ is what the tests run, with the plan of a ROS 1 build.
 
 from __future__ import annotations
 
-import argparse
-from collections.abc import Callable, Sequence
 from typing import Any
 
 from rfc.errors import RfcError
-from rfc.runtime.core import Published, QueueConfig
-from rfc.runtime.dma_device import DmaChannels
-from rfc.runtime.node import NodeCore
-from rfc.runtime.plan import RuntimePlan
+from rfc.runtime.core import Published
+from rfc.runtime.node import NodeSetup
 
 #: Seconds between two checks that the logic answers.
 CHECK_PERIOD = 0.5
@@ -29,15 +25,7 @@ def ros1_name(canonical: str) -> str:
     return f"{package}/{name}" if name else canonical
 
 
-# The same parameters as `rfc.runtime.ros2.spin`: the node calls one or the other by its
-# middleware; the two share the signature, not the body.
-def spin(
-    plan: RuntimePlan,
-    open_dma: Callable[[], DmaChannels],
-    queues: QueueConfig,
-    args: argparse.Namespace,
-    ros_arguments: Sequence[str],
-) -> None:
+def spin(setup: NodeSetup) -> None:
     """Create the node, run it until shut down, and log its account.
 
     Raises:
@@ -50,6 +38,7 @@ def spin(
             f"cannot import ROS 1's Python client ({exc.name})",
             hint="source a ROS 1 installation (setup.bash) first",
         ) from None
+    plan = setup.plan
 
     def raw_class(canonical: str) -> Any:
         entry = plan.messages.definitions[canonical]
@@ -63,10 +52,10 @@ def spin(
             },
         )
 
-    dma = open_dma()
-    rospy.init_node(plan.node_name, argv=[plan.node_name, *ros_arguments])
+    dma = setup.open_dma()
+    rospy.init_node(plan.node_name, argv=[plan.node_name, *setup.ros_arguments])
     publishers = {
-        o.topic: rospy.Publisher(o.topic, raw_class(o.message), queue_size=queues.depth)
+        o.topic: rospy.Publisher(o.topic, raw_class(o.message), queue_size=setup.queues.depth)
         for o in plan.outputs
     }
 
@@ -75,28 +64,20 @@ def spin(
         raw._buff = message.data
         publishers[message.topic].publish(raw)
 
-    core = NodeCore(
-        plan,
-        dma,
-        publish,
-        queues,
-        clock=lambda: rospy.Time.now().to_nsec(),
-        screen=not args.send_malformed,
-        status_period=args.status_period,
-    )
+    core = setup.core(dma, publish, lambda: rospy.Time.now().to_nsec())
     for topic_input in plan.inputs:
         rospy.Subscriber(
             topic_input.topic,
             rospy.AnyMsg,
             lambda raw, topic=topic_input.topic: core.on_message(topic, raw._buff),
-            queue_size=queues.depth,
+            queue_size=setup.queues.depth,
         )
     core.start()
     failure: list[RfcError] = []
 
     def check(_: object) -> None:
         try:
-            core.check(args.answer_timeout)
+            core.check(setup.answer_timeout)
         except RfcError as error:
             failure.append(error)
             rospy.signal_shutdown(error.message)

@@ -8,16 +8,13 @@ packages of the types (``geometry_msgs.msg``), which the node's ROS installation
 
 from __future__ import annotations
 
-import argparse
 import importlib
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from typing import Any
 
 from rfc.errors import RfcError
-from rfc.runtime.core import Published, QueueConfig
-from rfc.runtime.dma_device import DmaChannels
-from rfc.runtime.node import NodeCore
-from rfc.runtime.plan import RuntimePlan
+from rfc.runtime.core import Published
+from rfc.runtime.node import NodeCore, NodeSetup
 
 #: Seconds between two checks that the logic answers.
 CHECK_PERIOD = 0.5
@@ -39,15 +36,7 @@ def message_class(canonical: str) -> Any:
         ) from None
 
 
-# The same parameters as `rfc.runtime.ros1.spin`: the node calls one or the other by its
-# middleware; the two share the signature, not the body.
-def spin(
-    plan: RuntimePlan,
-    open_dma: Callable[[], DmaChannels],
-    queues: QueueConfig,
-    args: argparse.Namespace,
-    ros_arguments: Sequence[str],
-) -> None:
+def spin(setup: NodeSetup) -> None:
     """Create the node, run it until interrupted, and log its account.
 
     Raises:
@@ -63,37 +52,31 @@ def spin(
             f"cannot import ROS 2's Python client ({exc.name})",
             hint="source a ROS 2 installation (setup.bash), or pip install 'rfc[ros2]'",
         ) from None
+    plan = setup.plan
     names = {i.message for i in plan.inputs} | {o.message for o in plan.outputs}
     classes = {name: message_class(name) for name in names}
-    dma = open_dma()
-    rclpy.init(args=list(ros_arguments))
+    dma = setup.open_dma()
+    rclpy.init(args=list(setup.ros_arguments))
     node = rclpy.create_node(plan.node_name)
+    depth = setup.queues.depth
     publishers = {
-        output.topic: node.create_publisher(classes[output.message], output.topic, queues.depth)
+        output.topic: node.create_publisher(classes[output.message], output.topic, depth)
         for output in plan.outputs
     }
 
     def publish(message: Published) -> None:
         publishers[message.topic].publish(message.data)
 
-    core = NodeCore(
-        plan,
-        dma,
-        publish,
-        queues,
-        clock=lambda: node.get_clock().now().nanoseconds,
-        screen=not args.send_malformed,
-        status_period=args.status_period,
-    )
+    core = setup.core(dma, publish, lambda: node.get_clock().now().nanoseconds)
     for topic_input in plan.inputs:
         node.create_subscription(
             classes[topic_input.message],
             topic_input.topic,
             _deliver(core, topic_input.topic),
-            queues.depth,
+            depth,
             raw=True,
         )
-    node.create_timer(CHECK_PERIOD, lambda: core.check(args.answer_timeout))
+    node.create_timer(CHECK_PERIOD, lambda: core.check(setup.answer_timeout))
     core.start()
     try:
         rclpy.spin(node)

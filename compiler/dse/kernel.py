@@ -91,11 +91,8 @@ def simulate(
     for r in range(transfer.shape[0]):
         _replicate(
             tree,
-            load[r],
-            node_deadline[r],
-            transfer[r],
-            gap[r],
-            deadline[r],
+            (load[r], node_deadline[r]),
+            (transfer[r], gap[r], deadline[r]),
             cycles,
             out[r],
             state,
@@ -107,16 +104,11 @@ def simulate(
         )
 
 
-# `simulate`'s arrays again, with the state of one replicate: numba kernels take arrays one by
-# one, not a record of them.
 @kernel
 def _replicate(
     tree: Structure,
-    load: IntArray,
-    node_deadline: IntArray,
-    transfer: IntArray,
-    gap: IntArray,
-    deadline: IntArray,
+    keys: tuple[IntArray, IntArray],
+    traffic: tuple[IntArray, IntArray, IntArray],
     cycles: int,
     out: FloatArray,
     state: State,
@@ -126,7 +118,13 @@ def _replicate(
     work: Work,
     scratch: Scratch,
 ) -> None:
-    """One replicate of `simulate` (no allocation here: the arrays are its scratch)."""
+    """One replicate of `simulate`, no allocation here: the arrays after `out` are its scratch.
+
+    `keys` are the replicate's rows of `load` and `node_deadline`; `traffic` its rows of
+    `transfer`, `gap` and `deadline`.
+    """
+    load, node_deadline = keys
+    transfer, gap, deadline = traffic
     owner, computing, timer, seen, key, registered = state
     request, last = signals
     n = transfer.shape[0]

@@ -82,11 +82,17 @@ def estimate_resources(files: Sequence[Path], top: str) -> Resources:
         GhdlError: The VHDL does not synthesize.
         RuntimeError: Yosys is missing or fails.
     """
+    with _synthesized(files, top) as verilog:
+        return resources_of_verilog(verilog, top, verilog.parent)
+
+
+@contextmanager
+def _synthesized(files: Sequence[Path], top: str) -> Iterator[Path]:
+    """The Verilog GHDL synthesizes from VHDL `files`, in a scratch folder kept while in use."""
     with tempfile.TemporaryDirectory(prefix="rfc-synth-") as scratch:
-        work = Path(scratch)
-        verilog = work / f"{top}.v"
-        verilog.write_text(synthesize_verilog(files, top, work))
-        return resources_of_verilog(verilog, top, work)
+        verilog = Path(scratch) / f"{top}.v"
+        verilog.write_text(synthesize_verilog(files, top, verilog.parent))
+        yield verilog
 
 
 #: Changes whenever the way a module is mapped or timed changes, so old cache entries go unused.
@@ -306,11 +312,8 @@ def estimate_timing(files: Sequence[Path], top: str) -> TimingPath | None:
         GhdlError: The VHDL does not synthesize.
         RuntimeError: Yosys is missing or fails.
     """
-    with tempfile.TemporaryDirectory(prefix="rfc-synth-") as scratch:
-        work = Path(scratch)
-        verilog = work / f"{top}.v"
-        verilog.write_text(synthesize_verilog(files, top, work))
-        log = work / "sta.log"
+    with _synthesized(files, top) as verilog:
+        log = verilog.parent / "sta.log"
         _run_yosys(
             f"read_verilog {verilog}; synth_xilinx -family xc7 -noiopad -abc9 -flatten "
             f"-top {top}; {_timing_commands(top, log)}",

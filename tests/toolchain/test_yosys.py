@@ -107,3 +107,26 @@ def test_a_vhdl_design_is_counted_and_timed_as_its_verilog_is(tmp_path, monkeypa
     assert timed is not None
     assert mapped.timing is not None
     assert (timed.delay_ps, timed.levels) == (mapped.timing.delay_ps, mapped.timing.levels)
+
+
+RAM = """
+module ram (input clk, input we, input [10:0] addr, input [31:0] din, output reg [31:0] dout);
+  reg [31:0] memory [0:2047];
+  always @(posedge clk) begin
+    if (we) memory[addr] <= din;
+    dout <= memory[addr];
+  end
+endmodule
+"""
+
+
+def test_a_module_with_a_block_ram_is_counted_in_block_ram_and_timed(tmp_path, monkeypatch):
+    # Yosys 0.23's abc9 aborts on a block RAM: counted without it, timed in distributed RAM
+    monkeypatch.setenv("RFC_CACHE_DIR", str(tmp_path / "cache"))
+    source = tmp_path / "ram.v"
+    source.write_text(RAM)
+    mapped = yosys.module_estimate(source, "ram")
+    assert mapped.resources.bram >= 1
+    assert mapped.resources.lutram == 0
+    assert mapped.timing is not None
+    assert "module ram" in mapped.netlist.read_text()

@@ -65,34 +65,33 @@ def convert_myhdl(
     banner = "".join(f"-- {line}\n" for line in header.splitlines())
     marks = _user_marks(instance)
     with _CONVERTER_LOCK:
-        instance.convert(
-            hdl="VHDL",
-            path=str(directory),
-            name=name,
-            std_logic_ports=True,
-            initial_values=True,
-            no_myhdl_header=True,
-            header=banner,
-        )
+        _convert(instance, "VHDL", directory / name, banner, std_logic_ports=True)
         files = [directory / MYHDL_PACKAGE, directory / f"{name}.vhd"]
         _drop_undeclared_port_copies(files[1])
         if verilog:
             for signal, driven, read in marks:  # the VHDL conversion cleared them
                 signal._driven, signal._read = driven, read
-            instance.convert(
-                hdl="Verilog",
-                path=str(directory),
-                name=name,
-                testbench=False,
-                initial_values=True,
-                no_myhdl_header=True,
-                header=banner.replace("--", "//"),
+            _convert(
+                instance, "Verilog", directory / name, banner.replace("--", "//"), testbench=False
             )
             files.append(directory / f"{name}.v")
             _indexed_part_selects(files[-1])
             _negative_literals(files[-1])
             _signed_constants(files[-1], files[1])
     return files
+
+
+def _convert(instance: Any, hdl: str, stem: Path, header: str, **options: bool) -> None:
+    """One MyHDL conversion to `stem` (folder and name), with rfc's options for every HDL."""
+    instance.convert(
+        hdl=hdl,
+        path=str(stem.parent),
+        name=stem.name,
+        initial_values=True,
+        no_myhdl_header=True,
+        header=header,
+        **options,
+    )
 
 
 _LOOP_SLICE = re.compile(r"\[\(\((\w+) \+ 1\) \* (\d+)\)-1:\(\1 \* \2\)\]")

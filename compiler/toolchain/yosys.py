@@ -82,11 +82,17 @@ def estimate_resources(files: Sequence[Path], top: str) -> Resources:
         GhdlError: The VHDL does not synthesize.
         RuntimeError: Yosys is missing or fails.
     """
+    with _synthesized(files, top) as verilog:
+        return resources_of_verilog(verilog, top, verilog.parent)
+
+
+@contextmanager
+def _synthesized(files: Sequence[Path], top: str) -> Iterator[Path]:
+    """The Verilog GHDL synthesizes from VHDL `files`, in a scratch folder kept while in use."""
     with tempfile.TemporaryDirectory(prefix="rfc-synth-") as scratch:
-        work = Path(scratch)
-        verilog = work / f"{top}.v"
-        verilog.write_text(synthesize_verilog(files, top, work))
-        return resources_of_verilog(verilog, top, work)
+        verilog = Path(scratch) / f"{top}.v"
+        verilog.write_text(synthesize_verilog(files, top, verilog.parent))
+        yield verilog
 
 
 #: Changes whenever the way a module is mapped or timed changes, so old cache entries go unused.
@@ -192,18 +198,9 @@ def _map_module(verilog: Path, top: str, entry: Path, anonymous: Path) -> None:
     """
     with tempfile.TemporaryDirectory(prefix="rfc-synth-") as scratch:
         work = Path(scratch)
-        boundary, report, log = work / f"{top}.boundary.v", work / "stat.json", work / "sta.log"
-        mapping = f"read_verilog {verilog}; synth_xilinx -family xc7 -noiopad -abc9 -flatten"
-        timing_and_boundary = (
-            f"{_timing_commands(top, log)}; "
-            f"select -set boundary {_BOUNDARY}; setattr -set keep 1 @boundary; "
-            f"delete c:* @boundary %d; opt_clean; write_verilog -noattr {boundary}"
-        )
+        report = work / _STAT
         try:
-            _run_yosys(
-                f"{mapping} -top {top}; tee -q -o {report} stat -json; {timing_and_boundary}",
-                str(verilog),
-            )
+            _run_yosys(estimate_script(verilog, top, work), str(verilog))
         except _Abc9BlockRamError:
             # Yosys 0.23's abc9 aborts on every block RAM: count with the plain mapping, time
             # with the memories in distributed RAM (docs/performance.md, "Timing").
@@ -212,15 +209,50 @@ def _map_module(verilog: Path, top: str, entry: Path, anonymous: Path) -> None:
                 f"tee -q -o {report} stat -json",
                 str(verilog),
             )
-            _run_yosys(f"{mapping} -nobram -top {top}; {timing_and_boundary}", str(verilog))
+            _run_yosys(
+                f"{_mapping(verilog, top, '-nobram')}; {_timing_and_boundary(top, work)}",
+                str(verilog),
+            )
         resources = _resources(report)
-        timing = parse_sta(log.read_text())
-        _publish(anonymous, _renamed(boundary.read_text(), top))
+        timing = parse_sta((work / _STA).read_text())
+        _publish(anonymous, _renamed((work / _BOUNDARY_LOGIC).read_text(), top))
     value = {
         "resources": dataclasses.asdict(resources),
         "timing": None if timing is None else dataclasses.asdict(timing),
     }
     _publish(entry, json.dumps(value))
+
+
+#: What `estimate_script` writes in its folder: cell counts, `sta`'s report, boundary logic.
+_STAT, _STA, _BOUNDARY_LOGIC = "stat.json", "sta.log", "boundary.v"
+
+
+def estimate_script(verilog: Path, top: str, work: Path) -> str:
+    """The Yosys script `module_estimate` runs on module `top` of `verilog` (no block RAM).
+
+    It writes into `work` the cell counts (``stat.json``), `sta`'s report (``sta.log``) and
+    the boundary logic (``boundary.v``). tools/profile_estimate.py runs it with ``yosys -d``
+    to see where a module's mapping spends its time.
+    """
+    return (
+        f"{_mapping(verilog, top)}; tee -q -o {work / _STAT} stat -json; "
+        f"{_timing_and_boundary(top, work)}"
+    )
+
+
+def _mapping(verilog: Path, top: str, options: str = "") -> str:
+    """Read `verilog` and map its module `top` to the 7-series with `-abc9`."""
+    synth = " ".join(filter(None, ("synth_xilinx -family xc7 -noiopad -abc9 -flatten", options)))
+    return f"read_verilog {verilog}; {synth} -top {top}"
+
+
+def _timing_and_boundary(top: str, work: Path) -> str:
+    """Time the mapped `top` into ``work/sta.log``; keep its boundary logic in ``boundary.v``."""
+    return (
+        f"{_timing_commands(top, work / _STA)}; "
+        f"select -set boundary {_BOUNDARY}; setattr -set keep 1 @boundary; "
+        f"delete c:* @boundary %d; opt_clean; write_verilog -noattr {work / _BOUNDARY_LOGIC}"
+    )
 
 
 def estimate_modules(modules: Sequence[tuple[Path, str]]) -> list[ModuleEstimate]:
@@ -306,16 +338,9 @@ def estimate_timing(files: Sequence[Path], top: str) -> TimingPath | None:
         GhdlError: The VHDL does not synthesize.
         RuntimeError: Yosys is missing or fails.
     """
-    with tempfile.TemporaryDirectory(prefix="rfc-synth-") as scratch:
-        work = Path(scratch)
-        verilog = work / f"{top}.v"
-        verilog.write_text(synthesize_verilog(files, top, work))
-        log = work / "sta.log"
-        _run_yosys(
-            f"read_verilog {verilog}; synth_xilinx -family xc7 -noiopad -abc9 -flatten "
-            f"-top {top}; {_timing_commands(top, log)}",
-            top,
-        )
+    with _synthesized(files, top) as verilog:
+        log = verilog.parent / "sta.log"
+        _run_yosys(f"{_mapping(verilog, top)}; {_timing_commands(top, log)}", top)
         return parse_sta(log.read_text())
 
 

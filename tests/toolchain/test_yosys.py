@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from concurrent.futures import ThreadPoolExecutor
 
-from rfc.toolchain import crossing_timing, yosys
+from rfc.toolchain import convert_myhdl, crossing_timing, yosys
+from tests.toolchain.counter import counter_instance
 
 COUNTER = """
 module counter (input clk, output reg [7:0] count);
@@ -94,3 +95,38 @@ def test_a_block_under_another_name_is_mapped_once_and_named_as_each_instance_wa
     across = crossing_timing([first.netlist, second.netlist], top, "two")
     assert across is not None
     assert (across.start_cell, across.end_cell) == ("a", "b")
+
+
+def test_a_vhdl_design_is_counted_and_timed_as_its_verilog_is(tmp_path, monkeypatch):
+    # GHDL's synthesis of the VHDL and MyHDL's Verilog of one counter map to the same cells
+    monkeypatch.setenv("RFC_CACHE_DIR", str(tmp_path / "cache"))
+    *vhdl, verilog = convert_myhdl(counter_instance(), "counter8", tmp_path / "hdl")
+    mapped = yosys.module_estimate(verilog, "counter8")
+    assert yosys.estimate_resources(vhdl, "counter8") == mapped.resources
+    timed = yosys.estimate_timing(vhdl, "counter8")
+    assert timed is not None
+    assert mapped.timing is not None
+    assert (timed.delay_ps, timed.levels) == (mapped.timing.delay_ps, mapped.timing.levels)
+
+
+RAM = """
+module ram (input clk, input we, input [10:0] addr, input [31:0] din, output reg [31:0] dout);
+  reg [31:0] memory [0:2047];
+  always @(posedge clk) begin
+    if (we) memory[addr] <= din;
+    dout <= memory[addr];
+  end
+endmodule
+"""
+
+
+def test_a_module_with_a_block_ram_is_counted_in_block_ram_and_timed(tmp_path, monkeypatch):
+    # Yosys 0.23's abc9 aborts on a block RAM: counted without it, timed in distributed RAM
+    monkeypatch.setenv("RFC_CACHE_DIR", str(tmp_path / "cache"))
+    source = tmp_path / "ram.v"
+    source.write_text(RAM)
+    mapped = yosys.module_estimate(source, "ram")
+    assert mapped.resources.bram >= 1
+    assert mapped.resources.lutram == 0
+    assert mapped.timing is not None
+    assert "module ram" in mapped.netlist.read_text()

@@ -12,31 +12,19 @@ from collections.abc import Callable
 
 from myhdl import ConcatSignal, Signal, always_comb, block, intbv
 
+from rfc.lib.schedulers.ports import SchedulerBlock, SchedulerPorts
 from rfc.lib.schedulers.spec import AnySchedulerSpec, CompositionSpec
 from rfc.lib.types import Instances, SignalLike
 
-#: A block function with the scheduler ports (clk, rst, request, last, ready, offer, grant).
-SchedulerBlock = Callable[..., Instances]
 
-
-# The ports of every `SchedulerBlock`, then how to build a child's or the parent's block.
 @block
 def composition(
-    clk: SignalLike,
-    rst: SignalLike,
-    request: SignalLike,
-    last: SignalLike,
-    ready: SignalLike,
-    offer: SignalLike,
-    grant: SignalLike,
+    ports: SchedulerPorts,
     spec: CompositionSpec,
     build: Callable[[AnySchedulerSpec], SchedulerBlock],
 ) -> Instances:
-    """The composite of `spec`; `build(spec)` gives the block of a child or of the parent.
-
-    Ports are those of `statechart`: request and last (intbv[N] in), ready (in), offer and
-    grant (intbv[N] out).
-    """
+    """The composite of `spec`; `build(spec)` gives the block of a child or of the parent."""
+    clk, rst, request, last, ready, offer, grant = ports.signals()
     count = len(spec.children)
     parent_offer = Signal(intbv(0)[count:])
     parent_grant = Signal(intbv(0)[count:])

@@ -14,32 +14,25 @@ from collections.abc import Callable, Sequence
 from myhdl import Signal, always, always_comb, block, concat, intbv
 
 from rfc.lib.schedulers.statechart import Lines, PolicyHardware
-from rfc.lib.types import Instances, SignalLike
+from rfc.lib.types import Instances
 
 
 @block
 def countdown_table(
-    clk: SignalLike,
-    rst: SignalLike,
-    lines: Lines,
-    keys: list[SignalLike],
-    loads: Sequence[int],
-    bits: int,
-    keep_while_moving: bool,
+    lines: Lines, loads: Sequence[int], bits: int, keep_while_moving: bool
 ) -> Instances:
     """Counters loading `loads[i]` (biased) on arrival; keys = (next value, not holder).
 
     Args:
-        clk: Clock.
-        rst: Synchronous reset (counters to 0).
-        lines: The statechart's signals (arrival, pending, grant, hold).
-        keys: Out, the tree's keys (`bits` + 1 wide).
+        lines: The statechart's signals (clk, rst resetting the counters to 0, arrival, pending,
+            grant, hold) and the tree's keys it drives (`bits` + 1 wide).
         loads: Biased value each input's counter takes on arrival.
         bits: Counter width.
         keep_while_moving: The counter of the input whose beat moves does not count (LST).
     """
     n = len(loads)
     load = tuple(int(v) for v in loads)
+    clk, rst, keys = lines.clk, lines.rst, lines.keys
     arrival, pending, grant, hold = lines.arrival, lines.pending, lines.grant, lines.hold
     counter = [Signal(intbv(0)[bits:]) for _ in range(n)]
     following = [Signal(intbv(0)[bits:]) for _ in range(n)]

@@ -22,23 +22,15 @@ from rfc.lib.schedulers.priority_tree import index_bits, priority_tree
 from rfc.lib.schedulers.registry import policy
 from rfc.lib.schedulers.spec import Algorithm, SchedulerSpec
 from rfc.lib.schedulers.statechart import Lines, PolicyHardware
-from rfc.lib.types import Instances, SignalLike
+from rfc.lib.types import Instances
 
 
-# The ports of every `PolicyHardware.table`; LOEDF loads the deadline.
 @block
-def loedf_table(
-    clk: SignalLike,
-    rst: SignalLike,
-    lines: Lines,
-    keys: list[SignalLike],
-    pause: SignalLike,
-    spec: SchedulerSpec,
-) -> Instances:
+def loedf_table(lines: Lines, spec: SchedulerSpec) -> Instances:
     """Deadline counters: load D_i - 1 (biased) on arrival, count down while pending."""
     bias = 1 << (spec.counter_bits - 1)
     loads = [d - 1 + bias for d in spec.deadline]
-    return countdown_table(clk, rst, lines, keys, loads, spec.counter_bits, False)
+    return countdown_table(lines, loads, spec.counter_bits, False)
 
 
 @policy(Algorithm.LOEDF)
@@ -47,19 +39,12 @@ def loedf_hardware(spec: SchedulerSpec) -> PolicyHardware:
     return countdown_hardware(loedf_table, spec.counter_bits)
 
 
-# The ports of every `PolicyHardware.table`; ROEDF registers absolute deadlines.
 @block
-def roedf_table(
-    clk: SignalLike,
-    rst: SignalLike,
-    lines: Lines,
-    keys: list[SignalLike],
-    pause: SignalLike,
-    spec: SchedulerSpec,
-) -> Instances:
+def roedf_table(lines: Lines, spec: SchedulerSpec) -> Instances:
     """Absolute deadlines registered one per cycle through a shared adder; drives `pause`."""
     n, bits = spec.n, spec.counter_bits
     deadline = tuple(spec.deadline)
+    clk, rst, keys, pause = lines.clk, lines.rst, lines.keys, lines.pause
     request, complete, hold = lines.request, lines.complete, lines.hold
     absolute = [Signal(modbv(0)[bits:]) for _ in range(n)]
     registered = Signal(intbv(0)[n:])

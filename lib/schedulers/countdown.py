@@ -14,7 +14,7 @@ from collections.abc import Callable, Sequence
 from myhdl import Signal, always, always_comb, block, concat, intbv
 
 from rfc.lib.schedulers.statechart import Lines, PolicyHardware
-from rfc.lib.types import Instances
+from rfc.lib.types import Instances, SignalLike
 
 
 @block
@@ -47,14 +47,6 @@ def countdown_table(
             else:
                 following[i].next = counter[i]
 
-    @always_comb
-    def prioritize() -> None:
-        for i in range(n):
-            if hold[i]:
-                keys[i].next = concat(following[i], False)
-            else:
-                keys[i].next = concat(following[i], True)
-
     @always(clk.posedge)
     def register() -> None:
         if rst:
@@ -64,7 +56,23 @@ def countdown_table(
             for i in range(n):
                 counter[i].next = following[i]
 
-    return count, prioritize, register
+    return count, holder_keys(following, hold, keys), register
+
+
+@block
+def holder_keys(values: list[SignalLike], hold: SignalLike, keys: list[SignalLike]) -> Instances:
+    """Drive keys[i] with (values[i], not holder): the holder keeps the grant on a tie."""
+    n = len(values)
+
+    @always_comb
+    def prioritize() -> None:
+        for i in range(n):
+            if hold[i]:
+                keys[i].next = concat(values[i], False)
+            else:
+                keys[i].next = concat(values[i], True)
+
+    return prioritize
 
 
 def countdown_hardware(table: Callable[..., Instances], bits: int) -> PolicyHardware:

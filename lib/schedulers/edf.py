@@ -15,9 +15,9 @@ two cycles for a lone request, one more per request registered in the same burst
 
 from __future__ import annotations
 
-from myhdl import Signal, always, always_comb, block, concat, intbv, modbv
+from myhdl import Signal, always, always_comb, block, intbv, modbv
 
-from rfc.lib.schedulers.countdown import countdown_hardware, countdown_table
+from rfc.lib.schedulers.countdown import countdown_hardware, countdown_table, holder_keys
 from rfc.lib.schedulers.priority_tree import index_bits, priority_tree
 from rfc.lib.schedulers.registry import policy
 from rfc.lib.schedulers.spec import Algorithm, SchedulerSpec
@@ -69,15 +69,6 @@ def roedf_table(lines: Lines, spec: SchedulerSpec) -> Instances:
     def shared_adder() -> None:
         due.next = timer + relative
 
-    # As countdown_table's, on absolute deadlines: MyHDL names a process after its block.
-    @always_comb
-    def prioritize() -> None:
-        for i in range(n):
-            if hold[i]:
-                keys[i].next = concat(absolute[i], False)
-            else:
-                keys[i].next = concat(absolute[i], True)
-
     @always(clk.posedge)
     def register() -> None:
         flags = intbv(0)[n:]
@@ -94,6 +85,7 @@ def roedf_table(lines: Lines, spec: SchedulerSpec) -> Instances:
                 flags[chosen] = 1
             registered.next = flags & ~complete
 
+    prioritize = holder_keys(absolute, hold, keys)
     return unregistered, encoder, deadline_rom, shared_adder, prioritize, register
 
 

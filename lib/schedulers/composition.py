@@ -12,6 +12,7 @@ from collections.abc import Callable
 
 from myhdl import ConcatSignal, Signal, always_comb, block, intbv
 
+from rfc.lib.converters.wiring import follow
 from rfc.lib.schedulers.ports import SchedulerBlock, SchedulerPorts
 from rfc.lib.schedulers.spec import AnySchedulerSpec, CompositionSpec
 from rfc.lib.types import Instances, SignalLike
@@ -50,8 +51,8 @@ def composition(
             clk, rst, parent_request, parent_last, ready, parent_offer, parent_grant, spec.parent
         )
     )
-    parts.append(join_vector(ConcatSignal(*reversed(gated_offers)), offer))
-    parts.append(join_vector(ConcatSignal(*reversed(grants)), grant))
+    parts.append(follow(ConcatSignal(*reversed(gated_offers)), offer))
+    parts.append(follow(ConcatSignal(*reversed(grants)), grant))
     return parts
 
 
@@ -76,14 +77,3 @@ def child_port(
             gated.next = 0
 
     return summarize
-
-
-@block
-def join_vector(joined: SignalLike, port: SignalLike) -> Instances:
-    """Drive an output port from the children's concatenated vectors."""
-
-    @always_comb
-    def drive() -> None:
-        port.next = joined
-
-    return drive

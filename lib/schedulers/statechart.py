@@ -146,6 +146,7 @@ def statechart(ports: SchedulerPorts, spec: SchedulerSpec, policy: PolicyHardwar
     def offer_always() -> None:
         offer.next = hold & request
 
+    # Gates the offer by `ready`; `manager.entity.spread_bit` copies a bit: alike in shape only.
     @always_comb
     def grant_channel() -> None:
         if ready:

@@ -30,8 +30,8 @@ def select_bit(
 
 
 @block
-def index_bit(bits: SignalLike, index: SignalLike, out: SignalLike) -> Instances:
-    """Drive `out` with bit `index` of `bits`."""
+def index_bit(bits: SignalLike, index: SignalLike | int, out: SignalLike) -> Instances:
+    """Drive `out` with bit `index` of `bits` (a signal, or a constant bit position)."""
 
     @always_comb
     def select() -> None:

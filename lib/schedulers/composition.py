@@ -12,31 +12,20 @@ from collections.abc import Callable
 
 from myhdl import ConcatSignal, Signal, always_comb, block, intbv
 
+from rfc.lib.converters.wiring import follow
+from rfc.lib.schedulers.ports import SchedulerBlock, SchedulerPorts
 from rfc.lib.schedulers.spec import AnySchedulerSpec, CompositionSpec
 from rfc.lib.types import Instances, SignalLike
 
-#: A block function with the scheduler ports (clk, rst, request, last, ready, offer, grant).
-SchedulerBlock = Callable[..., Instances]
 
-
-# The ports of every `SchedulerBlock`, then how to build a child's or the parent's block.
 @block
 def composition(
-    clk: SignalLike,
-    rst: SignalLike,
-    request: SignalLike,
-    last: SignalLike,
-    ready: SignalLike,
-    offer: SignalLike,
-    grant: SignalLike,
+    ports: SchedulerPorts,
     spec: CompositionSpec,
     build: Callable[[AnySchedulerSpec], SchedulerBlock],
 ) -> Instances:
-    """The composite of `spec`; `build(spec)` gives the block of a child or of the parent.
-
-    Ports are those of `statechart`: request and last (intbv[N] in), ready (in), offer and
-    grant (intbv[N] out).
-    """
+    """The composite of `spec`; `build(spec)` gives the block of a child or of the parent."""
+    clk, rst, request, last, ready, offer, grant = ports.signals()
     count = len(spec.children)
     parent_offer = Signal(intbv(0)[count:])
     parent_grant = Signal(intbv(0)[count:])
@@ -62,8 +51,8 @@ def composition(
             clk, rst, parent_request, parent_last, ready, parent_offer, parent_grant, spec.parent
         )
     )
-    parts.append(join_vector(ConcatSignal(*reversed(gated_offers)), offer))
-    parts.append(join_vector(ConcatSignal(*reversed(grants)), grant))
+    parts.append(follow(ConcatSignal(*reversed(gated_offers)), offer))
+    parts.append(follow(ConcatSignal(*reversed(grants)), grant))
     return parts
 
 
@@ -88,14 +77,3 @@ def child_port(
             gated.next = 0
 
     return summarize
-
-
-@block
-def join_vector(joined: SignalLike, port: SignalLike) -> Instances:
-    """Drive an output port from the children's concatenated vectors."""
-
-    @always_comb
-    def drive() -> None:
-        port.next = joined
-
-    return drive

@@ -19,27 +19,20 @@ from rfc.lib.types import Instances, SignalLike
 
 @block
 def countdown_table(
-    clk: SignalLike,
-    rst: SignalLike,
-    lines: Lines,
-    keys: list[SignalLike],
-    loads: Sequence[int],
-    bits: int,
-    keep_while_moving: bool,
+    lines: Lines, loads: Sequence[int], bits: int, keep_while_moving: bool
 ) -> Instances:
     """Counters loading `loads[i]` (biased) on arrival; keys = (next value, not holder).
 
     Args:
-        clk: Clock.
-        rst: Synchronous reset (counters to 0).
-        lines: The statechart's signals (arrival, pending, grant, hold).
-        keys: Out, the tree's keys (`bits` + 1 wide).
+        lines: The statechart's signals (clk, rst resetting the counters to 0, arrival, pending,
+            grant, hold) and the tree's keys it drives (`bits` + 1 wide).
         loads: Biased value each input's counter takes on arrival.
         bits: Counter width.
         keep_while_moving: The counter of the input whose beat moves does not count (LST).
     """
     n = len(loads)
     load = tuple(int(v) for v in loads)
+    clk, rst, keys = lines.clk, lines.rst, lines.keys
     arrival, pending, grant, hold = lines.arrival, lines.pending, lines.grant, lines.hold
     counter = [Signal(intbv(0)[bits:]) for _ in range(n)]
     following = [Signal(intbv(0)[bits:]) for _ in range(n)]
@@ -54,14 +47,6 @@ def countdown_table(
             else:
                 following[i].next = counter[i]
 
-    @always_comb
-    def prioritize() -> None:
-        for i in range(n):
-            if hold[i]:
-                keys[i].next = concat(following[i], False)
-            else:
-                keys[i].next = concat(following[i], True)
-
     @always(clk.posedge)
     def register() -> None:
         if rst:
@@ -71,7 +56,23 @@ def countdown_table(
             for i in range(n):
                 counter[i].next = following[i]
 
-    return count, prioritize, register
+    return count, holder_keys(following, hold, keys), register
+
+
+@block
+def holder_keys(values: list[SignalLike], hold: SignalLike, keys: list[SignalLike]) -> Instances:
+    """Drive keys[i] with (values[i], not holder): the holder keeps the grant on a tie."""
+    n = len(values)
+
+    @always_comb
+    def prioritize() -> None:
+        for i in range(n):
+            if hold[i]:
+                keys[i].next = concat(values[i], False)
+            else:
+                keys[i].next = concat(values[i], True)
+
+    return prioritize
 
 
 def countdown_hardware(table: Callable[..., Instances], bits: int) -> PolicyHardware:

@@ -15,30 +15,22 @@ two cycles for a lone request, one more per request registered in the same burst
 
 from __future__ import annotations
 
-from myhdl import Signal, always, always_comb, block, concat, intbv, modbv
+from myhdl import Signal, always, always_comb, block, intbv, modbv
 
-from rfc.lib.schedulers.countdown import countdown_hardware, countdown_table
+from rfc.lib.schedulers.countdown import countdown_hardware, countdown_table, holder_keys
 from rfc.lib.schedulers.priority_tree import index_bits, priority_tree
 from rfc.lib.schedulers.registry import policy
 from rfc.lib.schedulers.spec import Algorithm, SchedulerSpec
 from rfc.lib.schedulers.statechart import Lines, PolicyHardware
-from rfc.lib.types import Instances, SignalLike
+from rfc.lib.types import Instances
 
 
-# The ports of every `PolicyHardware.table`; LOEDF loads the deadline.
 @block
-def loedf_table(
-    clk: SignalLike,
-    rst: SignalLike,
-    lines: Lines,
-    keys: list[SignalLike],
-    pause: SignalLike,
-    spec: SchedulerSpec,
-) -> Instances:
+def loedf_table(lines: Lines, spec: SchedulerSpec) -> Instances:
     """Deadline counters: load D_i - 1 (biased) on arrival, count down while pending."""
     bias = 1 << (spec.counter_bits - 1)
     loads = [d - 1 + bias for d in spec.deadline]
-    return countdown_table(clk, rst, lines, keys, loads, spec.counter_bits, False)
+    return countdown_table(lines, loads, spec.counter_bits, False)
 
 
 @policy(Algorithm.LOEDF)
@@ -47,19 +39,12 @@ def loedf_hardware(spec: SchedulerSpec) -> PolicyHardware:
     return countdown_hardware(loedf_table, spec.counter_bits)
 
 
-# The ports of every `PolicyHardware.table`; ROEDF registers absolute deadlines.
 @block
-def roedf_table(
-    clk: SignalLike,
-    rst: SignalLike,
-    lines: Lines,
-    keys: list[SignalLike],
-    pause: SignalLike,
-    spec: SchedulerSpec,
-) -> Instances:
+def roedf_table(lines: Lines, spec: SchedulerSpec) -> Instances:
     """Absolute deadlines registered one per cycle through a shared adder; drives `pause`."""
     n, bits = spec.n, spec.counter_bits
     deadline = tuple(spec.deadline)
+    clk, rst, keys, pause = lines.clk, lines.rst, lines.keys, lines.pause
     request, complete, hold = lines.request, lines.complete, lines.hold
     absolute = [Signal(modbv(0)[bits:]) for _ in range(n)]
     registered = Signal(intbv(0)[n:])
@@ -84,15 +69,6 @@ def roedf_table(
     def shared_adder() -> None:
         due.next = timer + relative
 
-    # As countdown_table's, on absolute deadlines: MyHDL names a process after its block.
-    @always_comb
-    def prioritize() -> None:
-        for i in range(n):
-            if hold[i]:
-                keys[i].next = concat(absolute[i], False)
-            else:
-                keys[i].next = concat(absolute[i], True)
-
     @always(clk.posedge)
     def register() -> None:
         flags = intbv(0)[n:]
@@ -109,6 +85,7 @@ def roedf_table(
                 flags[chosen] = 1
             registered.next = flags & ~complete
 
+    prioritize = holder_keys(absolute, hold, keys)
     return unregistered, encoder, deadline_rom, shared_adder, prioritize, register
 
 

@@ -12,7 +12,8 @@ from myhdl import ResetSignal, Signal, block, intbv
 
 # Each algorithm's module registers its hardware on import.
 from rfc.lib.schedulers import edf, fixed_priority, lru, lst  # noqa: F401
-from rfc.lib.schedulers.composition import SchedulerBlock, composition
+from rfc.lib.schedulers.composition import composition
+from rfc.lib.schedulers.ports import SchedulerBlock, SchedulerPorts
 from rfc.lib.schedulers.registry import policy_hardware
 from rfc.lib.schedulers.spec import AnySchedulerSpec, CompositionSpec, SchedulerSpec
 from rfc.lib.schedulers.statechart import statechart
@@ -28,7 +29,8 @@ def scheduler_block(spec: AnySchedulerSpec) -> SchedulerBlock:
     return composite_scheduler if isinstance(spec, CompositionSpec) else single_scheduler
 
 
-# The ports of every `SchedulerBlock` (a MyHDL block takes every port as a parameter).
+# The `SchedulerBlock` ports, one by one as the manager's mux passes them: the two kinds of
+# scheduler, each a level of the VHDL names (single_scheduler0_..., composite_scheduler0_...).
 @block
 def single_scheduler(
     clk: SignalLike,
@@ -41,10 +43,10 @@ def single_scheduler(
     spec: SchedulerSpec,
 ) -> Instances:
     """One algorithm: the statechart with the algorithm's parts."""
-    return statechart(clk, rst, request, last, ready, offer, grant, spec, policy_hardware(spec))
+    ports = SchedulerPorts(clk, rst, request, last, ready, offer, grant)
+    return statechart(ports, spec, policy_hardware(spec))
 
 
-# The ports of every `SchedulerBlock`; a composition's spec.
 @block
 def composite_scheduler(
     clk: SignalLike,
@@ -57,7 +59,8 @@ def composite_scheduler(
     spec: CompositionSpec,
 ) -> Instances:
     """A composition of schedulers."""
-    return composition(clk, rst, request, last, ready, offer, grant, spec, scheduler_block)
+    ports = SchedulerPorts(clk, rst, request, last, ready, offer, grant)
+    return composition(ports, spec, scheduler_block)
 
 
 def scheduler_top(spec: AnySchedulerSpec) -> SchedulerBlock:

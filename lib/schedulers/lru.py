@@ -14,22 +14,15 @@ from rfc.lib.schedulers.priority_tree import index_bits
 from rfc.lib.schedulers.registry import policy
 from rfc.lib.schedulers.spec import Algorithm, SchedulerSpec
 from rfc.lib.schedulers.statechart import Lines, PolicyHardware
-from rfc.lib.types import Instances, SignalLike
+from rfc.lib.types import Instances
 
 
-# The ports of every `PolicyHardware.table`; LRU keeps the ranks.
 @block
-def lru_table(
-    clk: SignalLike,
-    rst: SignalLike,
-    lines: Lines,
-    keys: list[SignalLike],
-    pause: SignalLike,
-    spec: SchedulerSpec,
-) -> Instances:
+def lru_table(lines: Lines, spec: SchedulerSpec) -> Instances:
     """The ranks (they are the tree's keys); reset to the input indices."""
     n = spec.n
     bottom = n - 1
+    clk, rst, keys = lines.clk, lines.rst, lines.keys
     selected, best_valid, best_key = lines.selected, lines.best_valid, lines.best_key
 
     @always(clk.posedge)

@@ -15,23 +15,15 @@ from rfc.lib.schedulers.countdown import countdown_hardware, countdown_table
 from rfc.lib.schedulers.registry import policy
 from rfc.lib.schedulers.spec import Algorithm, SchedulerSpec
 from rfc.lib.schedulers.statechart import Lines, PolicyHardware
-from rfc.lib.types import Instances, SignalLike
+from rfc.lib.types import Instances
 
 
-# The ports of every `PolicyHardware.table`; LST loads the slack.
 @block
-def lst_table(
-    clk: SignalLike,
-    rst: SignalLike,
-    lines: Lines,
-    keys: list[SignalLike],
-    pause: SignalLike,
-    spec: SchedulerSpec,
-) -> Instances:
+def lst_table(lines: Lines, spec: SchedulerSpec) -> Instances:
     """Slack counters: load D_i - T_i - 1 (biased) on arrival, count down while waiting."""
     bias = 1 << (spec.counter_bits - 1)
     loads = [d - t - 1 + bias for t, d in zip(spec.transfer, spec.deadline, strict=True)]
-    return countdown_table(clk, rst, lines, keys, loads, spec.counter_bits, True)
+    return countdown_table(lines, loads, spec.counter_bits, True)
 
 
 @policy(Algorithm.LST)

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from myhdl import Constant, Signal, always_comb, block, concat, intbv, modbv
 
+from rfc.lib.converters.wiring import index_bit
 from rfc.lib.types import Instances, SignalLike
 
 
@@ -67,7 +68,7 @@ def priority_tree(
         node_key.append(keys[i] if key_bits and i < n else Constant(intbv(0)[kb:]))
         if i < n:
             leaf = Signal(bool(0))
-            parts.append(tree_leaf(valid, i, leaf))
+            parts.append(index_bit(valid, i, leaf))
             node_valid.append(leaf)
         else:
             node_valid.append(Constant(bool(0)))
@@ -102,17 +103,6 @@ def priority_tree(
         live = -(-live // 2)  # nodes of this level with a candidate below
     parts.append(tree_root(node_valid[0], node_key[0], node_index[0], best, best_valid, best_key))
     return parts
-
-
-@block
-def tree_leaf(valid: SignalLike, index: int, leaf: SignalLike) -> Instances:
-    """Leaf `index`: the candidate's valid bit."""
-
-    @always_comb
-    def pass_valid() -> None:
-        leaf.next = valid[index]
-
-    return pass_valid
 
 
 @block

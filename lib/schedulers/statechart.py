@@ -16,6 +16,7 @@ from dataclasses import dataclass
 
 from myhdl import Signal, always, always_comb, block, intbv
 
+from rfc.lib.schedulers.ports import SchedulerPorts
 from rfc.lib.schedulers.priority_tree import index_bits, priority_tree
 from rfc.lib.schedulers.spec import SchedulerSpec
 from rfc.lib.types import Instances, SignalLike
@@ -23,9 +24,11 @@ from rfc.lib.types import Instances, SignalLike
 
 @dataclass(frozen=True)
 class Lines:
-    """The static part's signals a policy reads (each an intbv[N] unless said otherwise).
+    """The signals a policy's table reads, then the two it drives (intbv[N] unless said otherwise).
 
     Attributes:
+        clk: Clock.
+        rst: Synchronous reset, active high.
         request: The inputs' `tvalid`.
         candidates: Requesters that may be granted next (the one completing excluded).
         pending: Inputs with a message in progress (arrival-tracking policies only).
@@ -37,8 +40,12 @@ class Lines:
         best_valid: Bool, some candidate exists.
         best_key: The tree root's key.
         selected: Bool, the holder register takes `best` at this clock edge.
+        keys: Out, one key per input (`PolicyHardware.key_bits` wide; empty when 0).
+        pause: Bool out, enter or stay in COMPUTE (policies that pause only).
     """
 
+    clk: SignalLike
+    rst: SignalLike
     request: SignalLike
     candidates: SignalLike
     pending: SignalLike
@@ -50,6 +57,8 @@ class Lines:
     best_valid: SignalLike
     best_key: SignalLike
     selected: SignalLike
+    keys: list[SignalLike]
+    pause: SignalLike
 
 
 @dataclass(frozen=True)
@@ -62,8 +71,8 @@ class PolicyHardware:
         key_bits: Width of the keys the tree compares (0: index order only).
         modular: The keys wrap around (compared on a circle).
         pauses: The policy drives `pause` (enter or stay in COMPUTE).
-        table: ``table(clk, rst, lines, keys, pause, spec)`` building the Compute Condition
-            block: it drives `keys` (and `pause` when `pauses`); None when there is no table.
+        table: ``table(lines, spec)`` building the Compute Condition block: it drives
+            `lines.keys` (and `lines.pause` when `pauses`); None when there is no table.
     """
 
     preemptive: bool
@@ -74,32 +83,16 @@ class PolicyHardware:
     table: Callable[..., Instances] | None
 
 
-# The ports of every `SchedulerBlock`, then the algorithm's parts.
 @block
-def statechart(
-    clk: SignalLike,
-    rst: SignalLike,
-    request: SignalLike,
-    last: SignalLike,
-    ready: SignalLike,
-    offer: SignalLike,
-    grant: SignalLike,
-    spec: SchedulerSpec,
-    policy: PolicyHardware,
-) -> Instances:
+def statechart(ports: SchedulerPorts, spec: SchedulerSpec, policy: PolicyHardware) -> Instances:
     """One scheduler: the static states plus `policy`'s Compute Condition and Set Grant.
 
     Args:
-        clk: Clock.
-        rst: Synchronous reset, active high.
-        request: intbv[N] in, `tvalid` of each input.
-        last: intbv[N] in, `tlast` of each input.
-        ready: Bool in, the channel accepts a beat this cycle.
-        offer: intbv[N] out, the input offered the channel (grant before `ready`).
-        grant: intbv[N] out, one-hot or zero: drives the inputs' `tready`.
+        ports: The scheduler's ports.
         spec: Generation-time constants.
         policy: The algorithm's parts.
     """
+    clk, rst, request, last, ready, offer, grant = ports.signals()
     n = spec.n
     owner = Signal(intbv(0)[index_bits(n) :])
     owner_valid = Signal(bool(0))
@@ -119,17 +112,21 @@ def statechart(
     pause = Signal(bool(0))
     keys = [Signal(intbv(0)[policy.key_bits :]) for _ in range(n)] if policy.key_bits else []
     lines = Lines(
-        request,
-        candidates,
-        pending,
-        arrival,
-        grant,
-        complete,
-        hold,
-        best,
-        best_valid,
-        best_key,
-        selected,
+        clk=clk,
+        rst=rst,
+        request=request,
+        candidates=candidates,
+        pending=pending,
+        arrival=arrival,
+        grant=grant,
+        complete=complete,
+        hold=hold,
+        best=best,
+        best_valid=best_valid,
+        best_key=best_key,
+        selected=selected,
+        keys=keys,
+        pause=pause,
     )
     preemptive = policy.preemptive
 
@@ -149,6 +146,7 @@ def statechart(
     def offer_always() -> None:
         offer.next = hold & request
 
+    # Gates the offer by `ready`; `manager.entity.spread_bit` copies a bit: alike in shape only.
     @always_comb
     def grant_channel() -> None:
         if ready:
@@ -215,7 +213,7 @@ def statechart(
         ),
     ]
     if policy.table is not None:
-        parts.append(policy.table(clk, rst, lines, keys, pause, spec))
+        parts.append(policy.table(lines, spec))
     if policy.tracks_arrivals:
         parts.append(arrival_detector(clk, rst, request, complete, seen, pending, arrival))
     return parts

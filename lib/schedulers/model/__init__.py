@@ -35,7 +35,6 @@ from rfc.lib.schedulers.spec import (
 __all__ = [
     "SchedulerModel",
     "compose_models",
-    "leaf_tree",
     "make_model",
     "model_of",
     "tree_of",
@@ -81,30 +80,25 @@ def make_model(
     Raises:
         RfcError: Unknown algorithm, or timing values out of range.
     """
-    return SchedulerModel(
-        leaf_tree(algorithm, n, transfer, deadline, batch=batch, counter_bits=counter_bits)
-    )
-
-
-# `make_model`'s arguments: it wraps this tree in a model.
-def leaf_tree(
-    algorithm: str | Algorithm,
-    n: int,
-    transfer: ArrayLike = DEFAULT_TRANSFER,
-    deadline: ArrayLike | None = None,
-    *,
-    batch: int = 1,
-    counter_bits: int | None = None,
-) -> tree.SchedulerTree:
-    """The kernels' view of one scheduler (arguments and errors as `make_model`)."""
     chosen = parse_algorithm(algorithm)
     check_inputs(n)
     transfers = _timing(transfer, n, batch, "the transfer time")
     if deadline is None:
         deadline = transfers + DEFAULT_IDLE
     deadlines = _timing(deadline, n, batch, "the deadline")
+    return SchedulerModel(_leaf(chosen, transfers, deadlines, counter_bits))
+
+
+def _leaf(
+    algorithm: Algorithm,
+    transfers: tree.IntArray,
+    deadlines: tree.IntArray,
+    counter_bits: int | None,
+) -> tree.SchedulerTree:
+    """The kernels' view of one scheduler on checked [R, N] timing (counters as `make_model`)."""
     flat_t, flat_d = [int(transfers.max())], [int(deadlines.max())]
-    return tree.leaf(chosen, transfers, deadlines, counter_bits_for(flat_t, flat_d, counter_bits))
+    bits = counter_bits_for(flat_t, flat_d, counter_bits)
+    return tree.leaf(algorithm, transfers, deadlines, bits)
 
 
 def compose_models(
@@ -121,10 +115,7 @@ def compose_models(
         raise RfcError(f"a composition needs at least two schedulers, got {len(children)}")
     transfer = np.stack([child.transfer.max(axis=1) for child in children], axis=1)
     deadline = np.stack([child.deadline.min(axis=1) for child in children], axis=1)
-    batch = children[0].batch
-    top = leaf_tree(
-        parent, len(children), transfer, deadline, batch=batch, counter_bits=counter_bits
-    )
+    top = _leaf(parse_algorithm(parent), transfer, deadline, counter_bits)
     return SchedulerModel(tree.compose(top, [child.tree for child in children]))
 
 
@@ -139,11 +130,6 @@ def tree_of(spec: AnySchedulerSpec, batch: int = 1) -> tree.SchedulerTree:
         children = [tree_of(child, batch) for child in spec.children]
         return tree.compose(tree_of(spec.parent, batch), children)
     assert isinstance(spec, SchedulerSpec)
-    return leaf_tree(
-        spec.algorithm,
-        spec.n,
-        spec.transfer,
-        spec.deadline,
-        batch=batch,
-        counter_bits=spec.counter_bits,
-    )
+    transfers = _timing(spec.transfer, spec.n, batch, "the transfer time")
+    deadlines = _timing(spec.deadline, spec.n, batch, "the deadline")
+    return _leaf(spec.algorithm, transfers, deadlines, spec.counter_bits)

@@ -6,7 +6,8 @@ or replaces one small block by an equal one (another process label) changes the 
 not change the circuit. For every example, this builds the VHDL at a base revision and in the
 working tree, and for each file whose text differs it synthesizes both with GHDL
 (``ghdl --synth``) and asks Yosys to prove them equivalent: registers matched by name
-(``equiv_make``; GHDL's numbered nets are not matched), every matched signal proved by SAT
+(``equiv_make``; GHDL's numbered nets are not matched) or, when a block around them was
+renamed, by being driven alike (``equiv_struct``); every matched signal proved by SAT
 over the logic between registers (``equiv_simple``) and by induction over the registers
 (``equiv_induct``); ``equiv_status -assert`` fails on anything unproven. A file whose entity
 appears or disappears is reported as such, not proved.
@@ -115,27 +116,39 @@ def entity_of(vhdl: Path) -> str | None:
 
 
 def prove(gold: Path, gate: Path, top: str, workdir: Path) -> tuple[bool, str]:
-    """Ask Yosys whether netlists `gold` and `gate` of module `top` are the same circuit."""
+    """Ask Yosys whether netlists `gold` and `gate` of module `top` are the same circuit.
+
+    First with the registers paired by name; where that leaves signals unproved (a register
+    moved under another block has another name), again with cells paired by how they are
+    driven. Either way every pairing is a claim Yosys proves, never an assumption.
+    """
+    by_name = _run_equivalence(gold, gate, top, workdir / f"{top}.equiv.log", pair_cells="")
+    if by_name is None:
+        return True, "equivalent"
+    structural = workdir / f"{top}.struct.log"
+    if _run_equivalence(gold, gate, top, structural, "equiv_struct -icells; ") is None:
+        return True, "equivalent (registers paired by structure)"
+    return False, by_name
+
+
+def _run_equivalence(gold: Path, gate: Path, top: str, log: Path, pair_cells: str) -> str | None:
+    """Run one equivalence proof; None when it holds, else why not."""
     script = (
         f"read_verilog {gold}; rename {top} gold; read_verilog {gate}; rename {top} gate; "
         # GHDL numbers its own nets (n12_o, n12_q); the numbers shift with any edit, so two
         # nets of one name are not the same signal: only the design's own names are matched.
         "proc; memory -nomap; opt_clean; rename -hide w:n*_o w:n*_q w:n*_n; async2sync; "
-        "equiv_make gold gate equiv; hierarchy -top equiv; "
+        f"equiv_make gold gate equiv; hierarchy -top equiv; {pair_cells}"
         f"equiv_simple -seq {SEQUENCE_DEPTH}; equiv_induct -seq {SEQUENCE_DEPTH}; "
         "equiv_status -assert"
     )
     result = subprocess.run(
-        ["yosys", "-q", "-l", str(workdir / f"{top}.equiv.log"), "-p", script],
-        capture_output=True,
-        text=True,
-        check=False,
+        ["yosys", "-q", "-l", str(log), "-p", script], capture_output=True, text=True, check=False
     )
     if result.returncode == 0:
-        return True, "equivalent"
+        return None
     unproved = re.findall(r"Found (\d+) unproven \$equiv cells", result.stdout + result.stderr)
-    reason = f"{unproved[0]} signals unproved" if unproved else result.stderr.strip()[-400:]
-    return False, reason
+    return f"{unproved[0]} signals unproved" if unproved else result.stderr.strip()[-400:]
 
 
 def compare(spec: str, before: Path, after: Path, scratch: Path) -> list[Verdict]:

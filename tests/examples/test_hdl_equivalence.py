@@ -65,6 +65,37 @@ def counter_relabelled(clk, rst, enable, limit, count, at_limit):
 
 
 @block
+def count_register(clk, rst, enable, limit, count):
+    """The register of `counter`, in a block of its own (its signals named after the block)."""
+    held = Signal(intbv(0)[len(count) :])
+
+    @always_seq(clk.posedge, reset=rst)
+    def step():
+        if enable and held != limit:
+            held.next = held + 1
+        elif enable:
+            held.next = 0
+
+    @always_comb
+    def drive():
+        count.next = held
+
+    return step, drive
+
+
+@block
+def counter_nested(clk, rst, enable, limit, count, at_limit):
+    """`counter` with its register moved into a block: the register has another name."""
+    register = count_register(clk, rst, enable, limit, count)
+
+    @always_comb
+    def flag():
+        at_limit.next = count == limit
+
+    return register, flag
+
+
+@block
 def counter_saturating(clk, rst, enable, limit, count, at_limit):
     """`counter` that stays at `limit` instead of wrapping: another circuit."""
 
@@ -98,6 +129,12 @@ def verdicts(tmp_path: Path, gate) -> list:
 def test_relabelled_processes_and_rewritten_conditions_are_proved_the_same_circuit(tmp_path):
     (verdict,) = verdicts(tmp_path, counter_relabelled)
     assert verdict.file == "unit.vhd"
+    assert verdict.proved, verdict.detail
+
+
+def test_a_register_moved_into_a_block_of_its_own_is_proved_the_same(tmp_path):
+    (verdict,) = verdicts(tmp_path, counter_nested)
+    assert "count_register0_held" in (tmp_path / "after" / "unit.vhd").read_text()
     assert verdict.proved, verdict.detail
 
 

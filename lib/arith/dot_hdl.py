@@ -37,15 +37,11 @@ def fixed_dot(
 ) -> Instances:
     """``Σ a[i] * b[i]`` in `fmt`, rounded half up and saturated (`dot.dot_product`).
 
+    Ports: clock and handshakes named as in `rfc.lib.arith.pipeline`.
+
     Args:
-        clk: Clock.
-        rst: Synchronous reset (a MyHDL ``ResetSignal``).
-        in_valid: Input, `a` and `b` hold a pair list to take.
-        in_ready: Output, the block takes it on this cycle when `in_valid` is high.
         a: Inputs, raw integers of `fmt`.
         b: Inputs, raw integers of `fmt`, as many as `a`.
-        out_valid: Output, `result` holds a dot product.
-        out_ready: Input, the consumer takes it on this cycle.
         result: Output, raw integer of `fmt`.
         fmt: The operands' and result's format.
     """
@@ -70,14 +66,10 @@ def constant_dot(
 ) -> Instances:
     """``Σ a[i] * coefficients[i]`` in `fmt`: `fixed_dot` with constant second operands.
 
+    Ports: clock and handshakes named as in `rfc.lib.arith.pipeline`.
+
     Args:
-        clk: Clock.
-        rst: Synchronous reset (a MyHDL ``ResetSignal``).
-        in_valid: Input, `a` holds a vector to take.
-        in_ready: Output, the block takes it on this cycle when `in_valid` is high.
         a: Inputs, raw integers of `fmt`.
-        out_valid: Output, `result` holds a dot product.
-        out_ready: Input, the consumer takes it on this cycle.
         result: Output, raw integer of `fmt`.
         coefficients: Raw integers of `fmt`, one per input.
         fmt: The operands' and result's format.

@@ -50,15 +50,11 @@ def fixed_multiply(
 ) -> Instances:
     """``a * b`` in `fmt`, rounded half up and saturated (`rfc.lib.arith.mac.multiply`).
 
+    Ports: clock and handshakes named as in `rfc.lib.arith.pipeline`.
+
     Args:
-        clk: Clock.
-        rst: Synchronous reset (a MyHDL ``ResetSignal``).
-        in_valid: Input, `a` and `b` hold a pair to take.
-        in_ready: Output, the block takes the pair on this cycle when `in_valid` is high.
         a: Input, raw integer of `fmt`.
         b: Input, raw integer of `fmt`.
-        out_valid: Output, `product` holds a result.
-        out_ready: Input, the consumer takes the result on this cycle.
         product: Output, raw integer of `fmt`.
         fmt: The operands' and result's format.
     """
@@ -107,16 +103,12 @@ def fixed_mac(
     (`rfc.lib.arith.mac.multiply_accumulate` of that prefix); sums of up to
     ``2**MAC_GUARD_BITS`` products never wrap.
 
+    Ports: clock and handshakes named as in `rfc.lib.arith.pipeline`.
+
     Args:
-        clk: Clock.
-        rst: Synchronous reset (a MyHDL ``ResetSignal``).
-        in_valid: Input, `a`, `b` and `first` hold a pair to take.
-        in_ready: Output, the block takes the pair on this cycle when `in_valid` is high.
         a: Input, raw integer of `fmt`.
         b: Input, raw integer of `fmt`.
         first: Input, this pair starts a new sum.
-        out_valid: Output, `total` holds a result.
-        out_ready: Input, the consumer takes the result on this cycle.
         total: Output, raw integer of `fmt`.
         fmt: The operands' and result's format.
     """

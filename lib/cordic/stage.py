@@ -70,10 +70,9 @@ def micro_rotation(clk: SignalLike, rst: SignalLike, advance: SignalLike, shift:
                    after: Sequence[SignalLike]) -> Instances:  # fmt: skip
     """One micro-rotation as a pipeline stage, registered on the cycles `advance` is high.
 
+    Ports: clock and handshakes named as in `rfc.lib.arith.pipeline`.
+
     Args:
-        clk: Clock.
-        rst: Synchronous reset (a MyHDL ``ResetSignal``).
-        advance: Input, the pipeline moves on this cycle.
         shift: The stage's index i: the turn is ±atan(2**-i).
         angle_step: ``atan(2**-shift)`` as a raw integer of `z`'s format.
         vectoring: Turn towards y = 0 (vectoring mode) instead of towards z = 0 (rotation).

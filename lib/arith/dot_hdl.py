@@ -15,8 +15,8 @@ from collections.abc import Sequence
 
 from myhdl import Signal, always_seq, block
 
-from rfc.lib.arith.dot import dot_latency, dot_sum_levels
-from rfc.lib.arith.mac_hdl import round_to_format
+from rfc.lib.arith.dot import dot_latency
+from rfc.lib.arith.mac_hdl import adder_tree, round_to_format
 from rfc.lib.arith.pipeline import delay_line, signed_signal, stage_register, stall_control
 from rfc.lib.fixed import FixedFormat
 from rfc.lib.types import Instances, SignalLike
@@ -114,20 +114,13 @@ def dot_pipeline(
         else signal_product(clk, rst, advance, x, y, p)
         for x, y, p in zip(a, b, products, strict=True)
     ]
-    level = products
-    for _ in range(dot_sum_levels(len(a))):
-        sums = []
-        for k in range(0, len(level) - 1, 2):
-            total = signed_signal(max(len(level[k]), len(level[k + 1])) + 1)
-            parts.append(registered_add(clk, rst, advance, level[k], level[k + 1], total))
-            sums.append(total)
-        if len(level) % 2:
-            late = Signal(level[-1].val)
-            parts.append(stage_register(clk, rst, advance, level[-1], late))
-            sums.append(late)
-        level = sums
+    total = signed_signal(2 * fmt.width + (len(a) - 1).bit_length())
+    if len(a) == 1:  # a lone product still passes a register, as a sum's last level would
+        parts.append(stage_register(clk, rst, advance, products[0], total))
+    else:
+        parts.append(adder_tree(clk, rst, advance, [(p, 0) for p in products], total))
     rounded = fmt.signal()
-    parts.append(round_to_format(level[0], rounded, fmt))
+    parts.append(round_to_format(total, rounded, fmt))
     parts.append(stage_register(clk, rst, advance, rounded, result))
     # one valid bit per register: operands, products, adder levels, rounded result
     parts.append(delay_line(clk, rst, advance, valid_in, valid_out, dot_latency(len(a)) + 1))
@@ -178,22 +171,3 @@ def constant_product(
             product.next = a1 * factor
 
     return stages
-
-
-@block
-def registered_add(
-    clk: SignalLike,
-    rst: SignalLike,
-    advance: SignalLike,
-    x: SignalLike,
-    y: SignalLike,
-    total: SignalLike,
-) -> Instances:
-    """``x + y``, registered: one node of the adder tree."""
-
-    @always_seq(clk.posedge, reset=rst)
-    def add() -> None:
-        if advance:
-            total.next = x + y
-
-    return add

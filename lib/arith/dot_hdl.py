@@ -29,7 +29,7 @@ def fixed_dot(
     in_valid: SignalLike,
     in_ready: SignalLike,
     a: Sequence[SignalLike],
-    b: Sequence[SignalLike],
+    b: Sequence[SignalLike] | Sequence[int],
     out_valid: SignalLike,
     out_ready: SignalLike,
     result: SignalLike,
@@ -41,7 +41,7 @@ def fixed_dot(
 
     Args:
         a: Inputs, raw integers of `fmt`.
-        b: Inputs, raw integers of `fmt`, as many as `a`.
+        b: Inputs, raw integers of `fmt`, as many as `a`; or constants (`constant_dot`).
         result: Output, raw integer of `fmt`.
         fmt: The operands' and result's format.
     """
@@ -84,10 +84,9 @@ def constant_dot(
             raise ValueError(
                 f"coefficient {value} is outside the format ({fmt.min_raw} to {fmt.max_raw})"
             )
-    advance, valid_out = Signal(bool(0)), Signal(bool(0))
-    datapath = dot_pipeline(clk, rst, advance, in_valid, a, coefficients, valid_out, result, fmt)
-    control = stall_control(valid_out, out_ready, advance, in_ready, out_valid)
-    return datapath, control
+    return fixed_dot(
+        clk, rst, in_valid, in_ready, a, coefficients, out_valid, out_ready, result, fmt
+    )
 
 
 @block

@@ -42,14 +42,8 @@ def float_to_fixed_pipelined(
 ) -> Instances:
     """Float64 bit pattern → raw `fmt`, ties to even, saturating (`ieee754.float_to_fixed`).
 
-    Ports: clock and handshakes named as in `rfc.lib.arith.pipeline`.
-
-    Args:
-        bits: Input, 64-bit IEEE-754 pattern.
-        raw: Output, raw integer of `fmt`.
-        overflow: Output, the value lay outside `fmt` (or was ±Inf) and was saturated.
-        invalid: Output, the value was a NaN (`raw` is 0).
-        fmt: The fixed-point format.
+    Ports: clock and handshakes named as in `rfc.lib.arith.pipeline`, the others as
+    `float_to_fixed_pipeline`'s (its outputs held while `out_valid` waits for `out_ready`).
     """
     advance = Signal(bool(0))
     datapath = float_to_fixed_pipeline(clk, advance, bits, raw, overflow, invalid, fmt)
@@ -72,12 +66,8 @@ def fixed_to_float_pipelined(
 ) -> Instances:
     """Raw `fmt` → float64 bit pattern, ties to even (`ieee754.fixed_to_float`).
 
-    Ports: clock and handshakes named as in `rfc.lib.arith.pipeline`.
-
-    Args:
-        raw: Input, raw integer of `fmt`.
-        bits: Output, 64-bit IEEE-754 pattern.
-        fmt: The fixed-point format.
+    Ports: clock and handshakes named as in `rfc.lib.arith.pipeline`, the others as
+    `fixed_to_float_pipeline`'s (its output held while `out_valid` waits for `out_ready`).
     """
     advance = Signal(bool(0))
     datapath = fixed_to_float_pipeline(clk, advance, raw, bits, fmt)

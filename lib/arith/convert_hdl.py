@@ -52,6 +52,7 @@ def float_to_fixed_pipelined(
     return datapath, control
 
 
+# Its float_to_fixed_pipelined twin wraps the other datapath: the shared part is `handshakes`.
 @block
 def fixed_to_float_pipelined(
     clk: SignalLike,

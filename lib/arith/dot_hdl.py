@@ -22,6 +22,7 @@ from rfc.lib.fixed import FixedFormat
 from rfc.lib.types import Instances, SignalLike
 
 
+# Signatures alike across rfc.lib blocks are its handshake convention, not a repeated idea.
 @block
 def fixed_dot(
     clk: SignalLike,

@@ -282,6 +282,7 @@ def engine(
             read, hold_read, control, select_write, write, sequence, chain_tail)  # fmt: skip
 
 
+# Signatures of one-register blocks look alike across rfc.lib (converters' length_register).
 @block
 def chain_stage(
     clk: SignalLike,

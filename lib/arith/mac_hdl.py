@@ -65,6 +65,7 @@ def fixed_multiply(
     rounded = fmt.signal()
     rounding = round_to_format(held, rounded, fmt)
 
+    # Shaped like every stage's registers (`cordic.hdl.cordic_pipeline`'s): these are the DSP's.
     @always_seq(clk.posedge, reset=rst)
     def stages() -> None:
         if advance:
@@ -160,6 +161,7 @@ def mac_pipeline(
         else:
             base.next = total
 
+    # Shaped like every stage's registers (`cordic.stage.micro_rotation`'s): these are the MAC's.
     @always_seq(clk.posedge, reset=rst)
     def registers() -> None:
         if advance:

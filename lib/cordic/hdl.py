@@ -24,6 +24,7 @@ from rfc.lib.cordic.stage import micro_rotations
 from rfc.lib.types import Instances, SignalLike
 
 
+# Shaped like `rfc.lib.arith.sincos_hdl.sincos` (a handshake block picking its variant).
 @block
 def cordic_vectoring(
     clk: SignalLike,

@@ -15,8 +15,8 @@ from collections.abc import Sequence
 
 from myhdl import Signal, always_seq, block
 
-from rfc.lib.arith.dot import dot_latency
-from rfc.lib.arith.mac_hdl import adder_tree, round_to_format
+from rfc.lib.arith.dot import dot_latency, dot_sum_levels
+from rfc.lib.arith.mac_hdl import round_to_format
 from rfc.lib.arith.pipeline import delay_line, signed_signal, stage_register, stall_control
 from rfc.lib.fixed import FixedFormat
 from rfc.lib.types import Instances, SignalLike
@@ -30,7 +30,7 @@ def fixed_dot(
     in_valid: SignalLike,
     in_ready: SignalLike,
     a: Sequence[SignalLike],
-    b: Sequence[SignalLike] | Sequence[int],
+    b: Sequence[SignalLike],
     out_valid: SignalLike,
     out_ready: SignalLike,
     result: SignalLike,
@@ -42,7 +42,7 @@ def fixed_dot(
 
     Args:
         a: Inputs, raw integers of `fmt`.
-        b: Inputs, raw integers of `fmt`, as many as `a`; or constants (`constant_dot`).
+        b: Inputs, raw integers of `fmt`, as many as `a`.
         result: Output, raw integer of `fmt`.
         fmt: The operands' and result's format.
     """
@@ -85,9 +85,10 @@ def constant_dot(
             raise ValueError(
                 f"coefficient {value} is outside the format ({fmt.min_raw} to {fmt.max_raw})"
             )
-    return fixed_dot(
-        clk, rst, in_valid, in_ready, a, coefficients, out_valid, out_ready, result, fmt
-    )
+    advance, valid_out = Signal(bool(0)), Signal(bool(0))
+    datapath = dot_pipeline(clk, rst, advance, in_valid, a, coefficients, valid_out, result, fmt)
+    control = stall_control(valid_out, out_ready, advance, in_ready, out_valid)
+    return datapath, control
 
 
 @block
@@ -114,13 +115,20 @@ def dot_pipeline(
         else signal_product(clk, rst, advance, x, y, p)
         for x, y, p in zip(a, b, products, strict=True)
     ]
-    total = signed_signal(2 * fmt.width + (len(a) - 1).bit_length())
-    if len(a) == 1:  # a lone product still passes a register, as a sum's last level would
-        parts.append(stage_register(clk, rst, advance, products[0], total))
-    else:
-        parts.append(adder_tree(clk, rst, advance, [(p, 0) for p in products], total))
+    level = products
+    for _ in range(dot_sum_levels(len(a))):
+        sums = []
+        for k in range(0, len(level) - 1, 2):
+            total = signed_signal(max(len(level[k]), len(level[k + 1])) + 1)
+            parts.append(registered_add(clk, rst, advance, level[k], level[k + 1], total))
+            sums.append(total)
+        if len(level) % 2:
+            late = Signal(level[-1].val)
+            parts.append(stage_register(clk, rst, advance, level[-1], late))
+            sums.append(late)
+        level = sums
     rounded = fmt.signal()
-    parts.append(round_to_format(total, rounded, fmt))
+    parts.append(round_to_format(level[0], rounded, fmt))
     parts.append(stage_register(clk, rst, advance, rounded, result))
     # one valid bit per register: operands, products, adder levels, rounded result
     parts.append(delay_line(clk, rst, advance, valid_in, valid_out, dot_latency(len(a)) + 1))
@@ -171,3 +179,22 @@ def constant_product(
             product.next = a1 * factor
 
     return stages
+
+
+@block
+def registered_add(
+    clk: SignalLike,
+    rst: SignalLike,
+    advance: SignalLike,
+    x: SignalLike,
+    y: SignalLike,
+    total: SignalLike,
+) -> Instances:
+    """``x + y``, registered: one node of the adder tree."""
+
+    @always_seq(clk.posedge, reset=rst)
+    def add() -> None:
+        if advance:
+            total.next = x + y
+
+    return add

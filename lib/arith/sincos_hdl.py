@@ -17,7 +17,7 @@ from myhdl import Signal, always_comb, always_seq, block, intbv
 
 from rfc.lib.arith.pipeline import signed_signal, stall_control
 from rfc.lib.arith.sincos import SinCosConfig
-from rfc.lib.cordic.stage import looped_rotation, micro_rotations
+from rfc.lib.cordic.stage import looped_rotation, micro_rotation
 from rfc.lib.types import Instances, SignalLike
 
 
@@ -179,8 +179,22 @@ def sincos_pipelined(
             flip_first.next = flip_start
             valid_first.next = in_valid
 
-    registers = (valid, flips, xs, ys, zs)
-    stages = micro_rotations(clk, rst, advance, config.atan_table, False, registers)
+    # The same stages as `rfc.lib.cordic.hdl.cordic_pipeline`'s, in rotation mode: a block
+    # holding them both would rename every stage of the generated VHDL (MyHDL names instances
+    # by their blocks).
+    stages = [
+        micro_rotation(
+            clk,
+            rst,
+            advance,
+            i,
+            step,
+            False,
+            (valid[i], flips[i], xs[i], ys[i], zs[i]),
+            (valid[i + 1], flips[i + 1], xs[i + 1], ys[i + 1], zs[i + 1]),
+        )
+        for i, step in enumerate(config.atan_table)
+    ]
 
     control = stall_control(valid_last, out_ready, advance, in_ready, out_valid)
     return ends, load, stages, control

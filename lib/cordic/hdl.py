@@ -20,7 +20,7 @@ from myhdl import Signal, always_comb, always_seq, block, intbv
 
 from rfc.lib.arith.pipeline import signed_signal, stall_control
 from rfc.lib.cordic.config import CordicConfig
-from rfc.lib.cordic.stage import micro_rotations
+from rfc.lib.cordic.stage import micro_rotation
 from rfc.lib.types import Instances, SignalLike
 
 
@@ -159,6 +159,8 @@ def cordic_pipelined(clk: SignalLike, rst: SignalLike, in_valid: SignalLike,
     return datapath, control
 
 
+# Its stage list is also `rfc.lib.arith.sincos_hdl.sincos_pipelined`'s, in vectoring mode: a
+# block holding both would rename every stage in the generated VHDL.
 @block
 def cordic_pipeline(clk: SignalLike, rst: SignalLike, advance: SignalLike, valid_in: SignalLike,
                     x: SignalLike, y: SignalLike, valid_out: SignalLike, angle: SignalLike,
@@ -202,8 +204,19 @@ def cordic_pipeline(clk: SignalLike, rst: SignalLike, advance: SignalLike, valid
                 tag_first.next = 1 if y_zero else 0
             valid_first.next = valid_in
 
-    registers = (valid, tags, xs, ys, zs)
-    stages = micro_rotations(clk, rst, advance, config.atan_table, True, registers)
+    stages = [
+        micro_rotation(
+            clk,
+            rst,
+            advance,
+            i,
+            angle_step,
+            True,
+            (valid[i], tags[i], xs[i], ys[i], zs[i]),
+            (valid[i + 1], tags[i + 1], xs[i + 1], ys[i + 1], zs[i + 1]),
+        )
+        for i, angle_step in enumerate(config.atan_table)
+    ]
 
     @always_comb
     def outputs() -> None:

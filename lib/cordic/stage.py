@@ -5,8 +5,7 @@ magnitude) turns towards y = 0. Either way a micro-rotation turns (x, y) by ±at
 shifts by i and adds the opposite turn to `z`. `rotation` is that step alone (combinational)
 and `micro_rotation` one registered stage of an unrolled pipeline built on it, which also
 passes a valid bit and a tag (what later stages need to know about the input: a negation, a
-level vector) along unchanged; `micro_rotations` chains one per turn, the unrolled CORDIC of
-every pipelined block. `looped_rotation` is the same step for a loop that runs one
+level vector) along unchanged. `looped_rotation` is the same step for a loop that runs one
 micro-rotation per cycle (the sine/cosine's), built for the variable shift's timing.
 
 Arguments the three share: `vectoring` turns towards y = 0 (vectoring mode) instead of towards
@@ -101,30 +100,6 @@ def micro_rotation(clk: SignalLike, rst: SignalLike, advance: SignalLike, shift:
             z_out.next = z_next
 
     return step, hold
-
-
-@block
-def micro_rotations(
-    clk: SignalLike,
-    rst: SignalLike,
-    advance: SignalLike,
-    turns: tuple[int, ...],
-    vectoring: bool,
-    registers: Sequence[Sequence[SignalLike]],
-) -> Instances:
-    """An unrolled CORDIC: a `micro_rotation` stage per turn, each registered on `advance`.
-
-    Args:
-        turns: ``atan(2**-i)`` for each micro-rotation i, raw integers of `z`'s format.
-        registers: The ``(valid, tag, x, y, z)`` lists of ``len(turns) + 1`` signals each:
-            entry 0 the vector going in, entry i + 1 the vector after micro-rotation i.
-    """
-    stages = []
-    for i, turn in enumerate(turns):
-        before = [column[i] for column in registers]
-        after = [column[i + 1] for column in registers]
-        stages.append(micro_rotation(clk, rst, advance, i, turn, vectoring, before, after))
-    return stages
 
 
 # One idea with `rotation`, two builds: a fixed shift is wires, so a pipeline stage keeps the

@@ -48,15 +48,10 @@ def fixed_multiply(
     product: SignalLike,
     fmt: FixedFormat,
 ) -> Instances:
-    """``a * b`` in `fmt`, rounded half up and saturated (`rfc.lib.arith.mac.multiply`).
+    """``product = a * b`` in `fmt`, rounded half up and saturated (`rfc.lib.arith.mac.multiply`).
 
-    Ports: clock and handshakes named as in `rfc.lib.arith.pipeline`.
-
-    Args:
-        a: Input, raw integer of `fmt`.
-        b: Input, raw integer of `fmt`.
-        product: Output, raw integer of `fmt`.
-        fmt: The operands' and result's format.
+    Ports: clock and handshakes named as in `rfc.lib.arith.pipeline`; `a`, `b` (inputs) and
+    `product` (output) are raw integers of `fmt`, the operands' and result's format.
     """
     a1, b1 = fmt.signal(), fmt.signal()
     full, held = signed_signal(2 * fmt.width), signed_signal(2 * fmt.width)
@@ -104,14 +99,9 @@ def fixed_mac(
     (`rfc.lib.arith.mac.multiply_accumulate` of that prefix); sums of up to
     ``2**MAC_GUARD_BITS`` products never wrap.
 
-    Ports: clock and handshakes named as in `rfc.lib.arith.pipeline`.
-
-    Args:
-        a: Input, raw integer of `fmt`.
-        b: Input, raw integer of `fmt`.
-        first: Input, this pair starts a new sum.
-        total: Output, raw integer of `fmt`.
-        fmt: The operands' and result's format.
+    Ports: clock and handshakes named as in `rfc.lib.arith.pipeline`; `a`, `b` (inputs) and
+    `total` (output) are raw integers of `fmt`, the operands' and result's format; `first`
+    (input) starts a new sum with this pair.
     """
     advance = Signal(bool(0))
     valid_out = Signal(bool(0))

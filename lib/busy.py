@@ -23,6 +23,7 @@ from rfc.lib.converters.wiring import bits_of
 from rfc.lib.types import Instances, SignalLike
 
 
+# Its ports are the handshake names of `rfc.lib.arith.pipeline`, its logic its own.
 @block
 def busy_watch(
     clk: SignalLike,

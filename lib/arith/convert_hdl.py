@@ -42,18 +42,8 @@ def float_to_fixed_pipelined(
 ) -> Instances:
     """Float64 bit pattern → raw `fmt`, ties to even, saturating (`ieee754.float_to_fixed`).
 
-    Args:
-        clk: Clock.
-        rst: Synchronous reset (a MyHDL ``ResetSignal``).
-        in_valid: Input, `bits` holds a value to take.
-        in_ready: Output, the block takes the value on this cycle when `in_valid` is high.
-        bits: Input, 64-bit IEEE-754 pattern.
-        out_valid: Output, `raw`, `overflow` and `invalid` hold a result.
-        out_ready: Input, the consumer takes the result on this cycle.
-        raw: Output, raw integer of `fmt`.
-        overflow: Output, the value lay outside `fmt` (or was ±Inf) and was saturated.
-        invalid: Output, the value was a NaN (`raw` is 0).
-        fmt: The fixed-point format.
+    Ports: clock and handshakes named as in `rfc.lib.arith.pipeline`, the others as
+    `float_to_fixed_pipeline`'s (its outputs held while `out_valid` waits for `out_ready`).
     """
     advance = Signal(bool(0))
     datapath = float_to_fixed_pipeline(clk, advance, bits, raw, overflow, invalid, fmt)
@@ -62,6 +52,7 @@ def float_to_fixed_pipelined(
     return datapath, control
 
 
+# Its float_to_fixed_pipelined twin wraps the other datapath: the shared part is `handshakes`.
 @block
 def fixed_to_float_pipelined(
     clk: SignalLike,
@@ -76,16 +67,8 @@ def fixed_to_float_pipelined(
 ) -> Instances:
     """Raw `fmt` → float64 bit pattern, ties to even (`ieee754.fixed_to_float`).
 
-    Args:
-        clk: Clock.
-        rst: Synchronous reset (a MyHDL ``ResetSignal``).
-        in_valid: Input, `raw` holds a value to take.
-        in_ready: Output, the block takes the value on this cycle when `in_valid` is high.
-        raw: Input, raw integer of `fmt`.
-        out_valid: Output, `bits` holds a result.
-        out_ready: Input, the consumer takes the result on this cycle.
-        bits: Output, 64-bit IEEE-754 pattern.
-        fmt: The fixed-point format.
+    Ports: clock and handshakes named as in `rfc.lib.arith.pipeline`, the others as
+    `fixed_to_float_pipeline`'s (its output held while `out_valid` waits for `out_ready`).
     """
     advance = Signal(bool(0))
     datapath = fixed_to_float_pipeline(clk, advance, raw, bits, fmt)

@@ -22,6 +22,7 @@ from rfc.lib.fixed import FixedFormat
 from rfc.lib.types import Instances, SignalLike
 
 
+# Signatures alike across rfc.lib blocks are its handshake convention, not a repeated idea.
 @block
 def fixed_dot(
     clk: SignalLike,
@@ -37,17 +38,9 @@ def fixed_dot(
 ) -> Instances:
     """``Σ a[i] * b[i]`` in `fmt`, rounded half up and saturated (`dot.dot_product`).
 
-    Args:
-        clk: Clock.
-        rst: Synchronous reset (a MyHDL ``ResetSignal``).
-        in_valid: Input, `a` and `b` hold a pair list to take.
-        in_ready: Output, the block takes it on this cycle when `in_valid` is high.
-        a: Inputs, raw integers of `fmt`.
-        b: Inputs, raw integers of `fmt`, as many as `a`.
-        out_valid: Output, `result` holds a dot product.
-        out_ready: Input, the consumer takes it on this cycle.
-        result: Output, raw integer of `fmt`.
-        fmt: The operands' and result's format.
+    Ports: clock and handshakes named as in `rfc.lib.arith.pipeline`; `a` and `b` (inputs, as
+    many of each) and `result` (output) are raw integers of `fmt`, the operands' and result's
+    format.
     """
     advance, valid_out = Signal(bool(0)), Signal(bool(0))
     datapath = dot_pipeline(clk, rst, advance, in_valid, a, b, valid_out, result, fmt)
@@ -55,6 +48,7 @@ def fixed_dot(
     return datapath, control
 
 
+# fixed_dot's body with constant `b`: a call to fixed_dot would rename the dot's registers.
 @block
 def constant_dot(
     clk: SignalLike,
@@ -70,17 +64,11 @@ def constant_dot(
 ) -> Instances:
     """``Σ a[i] * coefficients[i]`` in `fmt`: `fixed_dot` with constant second operands.
 
+    Ports: clock and handshakes named as in `rfc.lib.arith.pipeline`; `a` (inputs) and `result`
+    (output) are raw integers of `fmt`, the operands' and result's format.
+
     Args:
-        clk: Clock.
-        rst: Synchronous reset (a MyHDL ``ResetSignal``).
-        in_valid: Input, `a` holds a vector to take.
-        in_ready: Output, the block takes it on this cycle when `in_valid` is high.
-        a: Inputs, raw integers of `fmt`.
-        out_valid: Output, `result` holds a dot product.
-        out_ready: Input, the consumer takes it on this cycle.
-        result: Output, raw integer of `fmt`.
         coefficients: Raw integers of `fmt`, one per input.
-        fmt: The operands' and result's format.
 
     Raises:
         ValueError: A coefficient outside `fmt`, or not one per input.
@@ -188,6 +176,7 @@ def constant_product(
     return stages
 
 
+# Signatures of one-register blocks look alike across rfc.lib (engine's chain_stage).
 @block
 def registered_add(
     clk: SignalLike,

@@ -43,15 +43,11 @@ def engine(
 ) -> Instances:
     """Run `program` on each message of `inputs`; results on `outputs` (bits of `engine.run`).
 
+    Ports: clock and handshakes named as in `rfc.lib.arith.pipeline`.
+
     Args:
-        clk: Clock.
-        rst: Synchronous reset (a MyHDL ``ResetSignal``).
-        in_valid: Input, `inputs` hold a message to take.
-        in_ready: Output, the engine takes the message on this cycle when `in_valid` is high.
         inputs: Input signals, ``program.inputs`` of them: float64 patterns (``intbv[64:]``)
             when ``program.float_io``, else raw words of ``program.fmt``.
-        out_valid: Output, `outputs` hold a result.
-        out_ready: Input, the consumer takes the result on this cycle.
         outputs: Output signals, ``program.outputs`` of them, typed as `inputs`.
         program: What to compute.
     """
@@ -286,6 +282,7 @@ def engine(
             read, hold_read, control, select_write, write, sequence, chain_tail)  # fmt: skip
 
 
+# Signatures of one-register blocks look alike across rfc.lib (converters' length_register).
 @block
 def chain_stage(
     clk: SignalLike,

@@ -48,19 +48,10 @@ def fixed_multiply(
     product: SignalLike,
     fmt: FixedFormat,
 ) -> Instances:
-    """``a * b`` in `fmt`, rounded half up and saturated (`rfc.lib.arith.mac.multiply`).
+    """``product = a * b`` in `fmt`, rounded half up and saturated (`rfc.lib.arith.mac.multiply`).
 
-    Args:
-        clk: Clock.
-        rst: Synchronous reset (a MyHDL ``ResetSignal``).
-        in_valid: Input, `a` and `b` hold a pair to take.
-        in_ready: Output, the block takes the pair on this cycle when `in_valid` is high.
-        a: Input, raw integer of `fmt`.
-        b: Input, raw integer of `fmt`.
-        out_valid: Output, `product` holds a result.
-        out_ready: Input, the consumer takes the result on this cycle.
-        product: Output, raw integer of `fmt`.
-        fmt: The operands' and result's format.
+    Ports: clock and handshakes named as in `rfc.lib.arith.pipeline`; `a`, `b` (inputs) and
+    `product` (output) are raw integers of `fmt`, the operands' and result's format.
     """
     a1, b1 = fmt.signal(), fmt.signal()
     full, held = signed_signal(2 * fmt.width), signed_signal(2 * fmt.width)
@@ -69,6 +60,7 @@ def fixed_multiply(
     rounded = fmt.signal()
     rounding = round_to_format(held, rounded, fmt)
 
+    # Shaped like every stage's registers (`cordic.hdl.cordic_pipeline`'s): these are the DSP's.
     @always_seq(clk.posedge, reset=rst)
     def stages() -> None:
         if advance:
@@ -107,18 +99,9 @@ def fixed_mac(
     (`rfc.lib.arith.mac.multiply_accumulate` of that prefix); sums of up to
     ``2**MAC_GUARD_BITS`` products never wrap.
 
-    Args:
-        clk: Clock.
-        rst: Synchronous reset (a MyHDL ``ResetSignal``).
-        in_valid: Input, `a`, `b` and `first` hold a pair to take.
-        in_ready: Output, the block takes the pair on this cycle when `in_valid` is high.
-        a: Input, raw integer of `fmt`.
-        b: Input, raw integer of `fmt`.
-        first: Input, this pair starts a new sum.
-        out_valid: Output, `total` holds a result.
-        out_ready: Input, the consumer takes the result on this cycle.
-        total: Output, raw integer of `fmt`.
-        fmt: The operands' and result's format.
+    Ports: clock and handshakes named as in `rfc.lib.arith.pipeline`; `a`, `b` (inputs) and
+    `total` (output) are raw integers of `fmt`, the operands' and result's format; `first`
+    (input) starts a new sum with this pair.
     """
     advance = Signal(bool(0))
     valid_out = Signal(bool(0))
@@ -168,6 +151,7 @@ def mac_pipeline(
         else:
             base.next = total
 
+    # Shaped like every stage's registers (`cordic.stage.micro_rotation`'s): these are the MAC's.
     @always_seq(clk.posedge, reset=rst)
     def registers() -> None:
         if advance:

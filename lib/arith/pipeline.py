@@ -3,6 +3,17 @@
 A pipeline with one stall enable moves on every cycle its last stage is empty or its result is
 taken; every register of it loads on those cycles only, so a stalled consumer holds the whole
 pipeline and nothing is lost or repeated.
+
+Ports: every handshaked block of rfc.lib's arithmetic (`rfc.lib.arith`, `rfc.lib.cordic`,
+`rfc.lib.fixed`) names its clock and handshakes alike, and its docstring lists only its other
+arguments:
+
+* `clk`: the clock; `rst`: the synchronous reset (a MyHDL ``ResetSignal``);
+* `in_valid` (input): the block's data inputs hold operands to take;
+* `in_ready` (output): the block takes them on this cycle when `in_valid` is high;
+* `out_valid` (output): the block's data outputs hold a result;
+* `out_ready` (input): the consumer takes the result on this cycle;
+* `advance` (input, handshake-free datapaths): the pipeline moves on this cycle.
 """
 
 from __future__ import annotations
@@ -139,14 +150,12 @@ def result_queue(
     queue's registered fill level: the consumer's `out_ready` reaches no stage). First word
     falls through: `target` and `out_valid` show the oldest entry.
 
+    Ports: clock and handshakes named as in this module.
+
     Args:
-        clk: Clock.
-        rst: Synchronous reset (a MyHDL ``ResetSignal``).
         push: Input, store `source` on this cycle.
         source: Input, the pipeline's result.
         has_room: Output, at least two entries are free: the pipeline may move this cycle.
-        out_valid: Output, `target` holds the oldest result.
-        out_ready: Input, the consumer takes it on this cycle.
         target: Output, as wide as `source`.
         depth: Entries (at least 2; `depth - 1` are used).
     """

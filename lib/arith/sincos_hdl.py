@@ -37,14 +37,10 @@ def sincos(
 ) -> Instances:
     """Cosine and sine of a fixed-point angle, with valid/ready handshakes.
 
+    Ports: clock and handshakes named as in `rfc.lib.arith.pipeline`.
+
     Args:
-        clk: Clock.
-        rst: Synchronous reset (a MyHDL ``ResetSignal``).
-        in_valid: Input, `angle` holds a value to take.
-        in_ready: Output, the block takes the angle on this cycle when `in_valid` is high.
         angle: Input, signed raw integer of ``config.angle_format`` (radians in [-8, 8)).
-        out_valid: Output, `cos` and `sin` hold a result.
-        out_ready: Input, the consumer takes the result on this cycle.
         cos: Output, signed raw integer of ``config.out_format``.
         sin: Output, signed raw integer of ``config.out_format``.
         config: Precision and iterations.

@@ -58,15 +58,11 @@ def transform_multiply(
 ) -> Instances:
     """``C = A·B`` of homogeneous transforms in `fmt`, sequential on one multiply-accumulate.
 
+    Ports: clock and handshakes named as in `rfc.lib.arith.pipeline`.
+
     Args:
-        clk: Clock.
-        rst: Synchronous reset (a MyHDL ``ResetSignal``).
-        in_valid: Input, `a` and `b` hold a pair of transforms to take.
-        in_ready: Output, the block takes them on this cycle when `in_valid` is high.
         a: 12 input signals of `fmt`: A's top three rows, row-major.
         b: 12 input signals of `fmt`: B's top three rows, row-major.
-        out_valid: Output, `c` holds a result.
-        out_ready: Input, the consumer takes the result on this cycle.
         c: 12 output signals of `fmt`: C's top three rows, row-major.
         fmt: The entries' fixed-point format (1.0 must be representable).
     """

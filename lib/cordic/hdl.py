@@ -24,6 +24,7 @@ from rfc.lib.cordic.stage import micro_rotation
 from rfc.lib.types import Instances, SignalLike
 
 
+# Shaped like `rfc.lib.arith.sincos_hdl.sincos` (a handshake block picking its variant).
 @block
 def cordic_vectoring(
     clk: SignalLike,
@@ -41,15 +42,11 @@ def cordic_vectoring(
 ) -> Instances:
     """Vectoring CORDIC: atan2(y, x) and gain·sqrt(x² + y²), with valid/ready handshakes.
 
+    Ports: clock and handshakes named as in `rfc.lib.arith.pipeline`.
+
     Args:
-        clk: Clock.
-        rst: Synchronous reset (a MyHDL ``ResetSignal``).
-        in_valid: Input, `x` and `y` hold a pair to take.
-        in_ready: Output, the block takes the pair on this cycle when `in_valid` is high.
         x: Input, signed ``config.width`` bits.
         y: Input, signed ``config.width`` bits, same scale as `x`.
-        out_valid: Output, `angle` and `magnitude` hold a result.
-        out_ready: Input, the consumer takes the result on this cycle.
         angle: Output, signed ``config.angle_width`` bits: radians with ``config.angle_frac``
             fraction bits, in [-π, π] up to the residual (2**(1 - iterations)); exact when y
             is 0 (0 for (0, 0)).

@@ -7,6 +7,10 @@ and `micro_rotation` one registered stage of an unrolled pipeline built on it, w
 passes a valid bit and a tag (what later stages need to know about the input: a negation, a
 level vector) along unchanged. `looped_rotation` is the same step for a loop that runs one
 micro-rotation per cycle (the sine/cosine's), built for the variable shift's timing.
+
+Arguments the three share: `vectoring` turns towards y = 0 (vectoring mode) instead of towards
+z = 0 (rotation mode); `before` and `after` are the vector's signals into and out of the step
+(``(x, y, z)``, and in a stage ``(valid, tag, x, y, z)``), of the same widths.
 """
 
 from __future__ import annotations
@@ -34,14 +38,13 @@ def rotation(vectoring: bool, shift: int | SignalLike, turns: tuple[int, ...],
              after: Sequence[SignalLike]) -> Instances:  # fmt: skip
     """``(x, y, z)`` after one micro-rotation (combinational).
 
+    `vectoring`, `before` and `after` as the module describes.
+
     Args:
-        vectoring: Turn towards y = 0 (vectoring mode) instead of towards z = 0 (rotation).
         shift: The micro-rotation's index i, an int (a pipeline stage) or a Signal (a loop).
         turns: ``atan(2**-i)`` as raw integers of `z`'s format, a ROM read at `index` (wide
             constants reach VHDL only as ROM contents).
         index: Where the turn is in `turns`, an int or a Signal.
-        before: ``(x, y, z)`` signals.
-        after: ``(x, y, z)`` signals of the same widths.
     """
     x, y, z = before
     x_next, y_next, z_next = after
@@ -70,15 +73,12 @@ def micro_rotation(clk: SignalLike, rst: SignalLike, advance: SignalLike, shift:
                    after: Sequence[SignalLike]) -> Instances:  # fmt: skip
     """One micro-rotation as a pipeline stage, registered on the cycles `advance` is high.
 
+    Ports: clock and handshakes named as in `rfc.lib.arith.pipeline`; `vectoring`, `before`
+    and `after` as the module describes.
+
     Args:
-        clk: Clock.
-        rst: Synchronous reset (a MyHDL ``ResetSignal``).
-        advance: Input, the pipeline moves on this cycle.
         shift: The stage's index i: the turn is ±atan(2**-i).
         angle_step: ``atan(2**-shift)`` as a raw integer of `z`'s format.
-        vectoring: Turn towards y = 0 (vectoring mode) instead of towards z = 0 (rotation).
-        before: ``(valid, tag, x, y, z)`` signals into the stage.
-        after: ``(valid, tag, x, y, z)`` registers out of it, of the same widths.
     """
     valid_in, tag_in, x_in, y_in, z_in = before
     x_next, y_next, z_next = Signal(x_in.val), Signal(y_in.val), Signal(z_in.val)
@@ -120,12 +120,11 @@ def looped_rotation(
     first), and each of x and y is one adder that adds the shifted operand or its complement
     plus 1, so that its path is a barrel shifter and one carry chain.
 
+    `vectoring`, `before` and `after` as the module describes.
+
     Args:
-        vectoring: Turn towards y = 0 (vectoring mode) instead of towards z = 0 (rotation).
         shift: The micro-rotation's index i (a Signal).
         turn: ``atan(2**-i)`` as a raw integer of `z`'s format (a register).
-        before: ``(x, y, z)`` signals.
-        after: ``(x, y, z)`` signals of the same widths.
     """
     x, y, z = before
     x_next, y_next, z_next = after

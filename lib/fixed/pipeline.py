@@ -48,9 +48,9 @@ def float_to_fixed_pipeline(
 ) -> Instances:
     """Float64 → `fmt`, ties to even, saturating: `ieee754.float_to_fixed` in five stages.
 
+    Ports: clock and handshakes named as in `rfc.lib.arith.pipeline`.
+
     Args:
-        clk: Clock.
-        advance: Input, the pipeline moves on this cycle.
         bits: Input, 64-bit IEEE-754 pattern.
         raw: Output register, the raw integer of `fmt` (signed ``fmt.width`` bits).
         overflow: Output register, the input lay outside `fmt` or was ±Inf: `raw` saturated.
@@ -176,9 +176,9 @@ def fixed_to_float_pipeline(
 ) -> Instances:
     """`fmt` → float64, ties to even: `ieee754.fixed_to_float` in four stages.
 
+    Ports: clock and handshakes named as in `rfc.lib.arith.pipeline`.
+
     Args:
-        clk: Clock.
-        advance: Input, the pipeline moves on this cycle.
         raw: Input, the raw integer of `fmt` (signed ``fmt.width`` bits).
         bits: Output register, the 64-bit IEEE-754 pattern (zero gives +0.0).
         fmt: The fixed-point format of `raw`.

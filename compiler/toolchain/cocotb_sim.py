@@ -22,7 +22,7 @@ from pathlib import Path
 from xml.etree import ElementTree
 
 from cocotb_tools.config import libs_dir
-from cocotb_tools.runner import get_runner
+from cocotb_tools.runner import Runner, get_runner
 
 from rfc.toolchain.cache import cache_root
 from rfc.toolchain.convert import canonical_lines
@@ -126,16 +126,16 @@ def compile_logic(logic: CompiledLogic, sources: Sequence[Path]) -> None:
 @contextlib.contextmanager
 def ghdl_environment(backend: Backend) -> Iterator[None]:
     """Select `backend` for the ``ghdl`` commands run within (not thread-safe)."""
-    saved = {key: os.environ.get(key) for key in backend.environment()}
+    before = dict(os.environ)
     os.environ.update(backend.environment())
     try:
         yield
     finally:
-        for key, value in saved.items():
-            if value is None:
-                os.environ.pop(key, None)
+        for key in backend.environment():
+            if key in before:
+                os.environ[key] = before[key]
             else:
-                os.environ[key] = value
+                del os.environ[key]
 
 
 def _vhdl_sources(sources: Sequence[Path]) -> list[Path]:
@@ -197,26 +197,58 @@ def run_cocotb(
         (build_dir / compiled.program.name).unlink(missing_ok=True)
         (build_dir / compiled.program.name).symlink_to(compiled.program)
         library = compiled.folder
-    results = build_dir / "results.xml"
-    results.unlink(missing_ok=True)
     selected = ghdl_environment(compiled.backend) if compiled else contextlib.nullcontext()
+    return _run_tests(
+        runner,
+        selected,
+        _Tests(test_module, toplevel, "vhdl", testcase, seed, env),
+        library,
+        build_dir,
+        waves=waves,
+        test_args=list(_GHDL_OPTIONS),
+    )
+
+
+@dataclass(frozen=True)
+class _Tests:
+    """Which cocotb tests run on which top level, how (seed) and with what environment."""
+
+    module: str
+    toplevel: str
+    language: str
+    testcase: str | None
+    seed: int | None
+    env: Mapping[str, str] | None
+
+
+def _run_tests(
+    runner: Runner,
+    environment: contextlib.AbstractContextManager[None],
+    tests: _Tests,
+    build_dir: Path,
+    test_dir: Path,
+    **options: object,
+) -> int:
+    """Run `tests` on what `build_dir` holds, in `test_dir`; the number that ran (all passed)."""
+    test_dir.mkdir(parents=True, exist_ok=True)
+    results = test_dir / "results.xml"
+    results.unlink(missing_ok=True)
     # cocotb exits on failure under pytest; the results file says why.
-    with selected, contextlib.suppress(SystemExit):
+    with environment, contextlib.suppress(SystemExit):
         runner.test(
-            test_module=test_module,
-            hdl_toplevel=toplevel,
-            hdl_toplevel_lang="vhdl",
-            build_dir=library,
-            test_dir=build_dir,
-            testcase=testcase,
-            seed=seed,
-            extra_env=dict(env or {}),
+            test_module=tests.module,
+            hdl_toplevel=tests.toplevel,
+            hdl_toplevel_lang=tests.language,
+            build_dir=build_dir,
+            test_dir=test_dir,
+            testcase=tests.testcase,
+            seed=tests.seed,
+            extra_env=dict(tests.env or {}),
             results_xml=str(results),
-            waves=waves,
-            test_args=list(_GHDL_OPTIONS),
-            log_file=build_dir / "sim.log",
+            log_file=test_dir / "sim.log",
+            **options,  # type: ignore[arg-type]
         )
-    return _check_results(results, build_dir / "sim.log")
+    return _check_results(results, test_dir / "sim.log")
 
 
 def _run_verilator(
@@ -230,24 +262,8 @@ def _run_verilator(
 ) -> int:
     verilog = [Path(s).resolve() for s in sources if Path(s).suffix == ".v"]
     model = _verilator_model(verilog, toplevel)
-    test_dir.mkdir(parents=True, exist_ok=True)
-    results = test_dir / "results.xml"
-    results.unlink(missing_ok=True)
-    runner = get_runner("verilator")
-    with verilator_environment(), contextlib.suppress(SystemExit):
-        runner.test(
-            test_module=test_module,
-            hdl_toplevel=toplevel,
-            hdl_toplevel_lang="verilog",
-            build_dir=model,
-            test_dir=test_dir,
-            testcase=testcase,
-            seed=seed,
-            extra_env=dict(env or {}),
-            results_xml=str(results),
-            log_file=test_dir / "sim.log",
-        )
-    return _check_results(results, test_dir / "sim.log")
+    tests = _Tests(test_module, toplevel, "verilog", testcase, seed, env)
+    return _run_tests(get_runner("verilator"), verilator_environment(), tests, model, test_dir)
 
 
 def _verilator_model(verilog: Sequence[Path], toplevel: str) -> Path:

@@ -101,26 +101,27 @@ def compile_logic(logic: CompiledLogic, sources: Sequence[Path]) -> None:
     logic.folder.parent.mkdir(parents=True, exist_ok=True)
     partial = Path(tempfile.mkdtemp(prefix=f"{logic.folder.name}.", dir=logic.folder.parent))
     runner = get_runner("ghdl")
-    with ghdl_environment(logic.backend):
-        try:
-            runner.build(
-                sources=_vhdl_sources(sources),
-                hdl_toplevel=logic.toplevel,
-                build_dir=partial,
-                build_args=list(_GHDL_OPTIONS),
-                always=True,
-                log_file=partial / "build.log",
-            )
-        except (SystemExit, RuntimeError) as exc:
-            log = partial / "build.log"
-            tail = log.read_text(errors="replace")[-4000:] if log.is_file() else str(exc)
-            shutil.rmtree(partial, ignore_errors=True)
-            raise CosimError(f"GHDL could not compile {logic.toplevel}:\n{tail}") from None
-    for code in partial.glob("*.o"):  # linked into the program: only its size left
-        code.unlink()
-    with contextlib.suppress(OSError):  # another process may have compiled it meanwhile
-        partial.rename(logic.folder)
-    shutil.rmtree(partial, ignore_errors=True)
+    try:  # nothing half-compiled is left behind, even when interrupted
+        with ghdl_environment(logic.backend):
+            try:
+                runner.build(
+                    sources=_vhdl_sources(sources),
+                    hdl_toplevel=logic.toplevel,
+                    build_dir=partial,
+                    build_args=list(_GHDL_OPTIONS),
+                    always=True,
+                    log_file=partial / "build.log",
+                )
+            except (SystemExit, RuntimeError) as exc:
+                log = partial / "build.log"
+                tail = log.read_text(errors="replace")[-4000:] if log.is_file() else str(exc)
+                raise CosimError(f"GHDL could not compile {logic.toplevel}:\n{tail}") from None
+        for code in partial.glob("*.o"):  # linked into the program: only its size left
+            code.unlink()
+        with contextlib.suppress(OSError):  # another process may have compiled it meanwhile
+            partial.rename(logic.folder)
+    finally:
+        shutil.rmtree(partial, ignore_errors=True)
 
 
 @contextlib.contextmanager

@@ -4,25 +4,31 @@ For each system (the quaternion example with random orientations 1.5 µs apart, 
 pass-through fed the /odom messages of a recorded bag) and each simulator, two bags (SMALL and
 LARGE messages) go
 
-(a) through ``rfc sim --simulator S`` as a user runs it (a warm-up run fills Verilator's cache
-    first), and
+(a) through ``rfc sim --simulator S`` as a user runs it (a warm-up run fills the cache of
+    compiled logic first: Verilator's model, GHDL's program), and
 (b) through a plain testbench of the same logic on the same simulator, without Python:
     Verilator runs the C++ testbench (``compiler/sim/testbench/axis_engine.cpp --batch``) on a file
     of transfers; GHDL runs ``compiler/sim/testbench/axis_plain_tb.vhd``, which reads them with
-    textio (analysis and elaboration are not timed).
+    textio, on the back-end rfc sim uses (analysis and elaboration are not timed).
 
 With ``myhdl`` as the simulator, (a) runs ``rfc sim --backend myhdl`` (the whole logic in MyHDL's
 simulator, in process) and there is no plain testbench.
 
 On Verilator, (c) the cocotb harness rfc sim used before the C++ testbench (cocotbext-axi
 driving the streams beat by beat, `simulate_with_ghdl(..., simulator="verilator")` in process,
-on SMALL and LARGE_GHDL messages) gives the speed-up over it.
+on SMALL and LARGE_GHDL messages) gives the speed-up over it. On GHDL, (c) is rfc sim on GHDL's
+mcode back-end (``GHDL_BACKEND=mcode``, which compiles the logic in memory at every run), the
+path rfc sim took before it compiled the logic with the fastest installed back-end; its output
+bags must equal the fast back-end's byte for byte. The time GHDL's back-end takes to compile
+the logic once (`rfc.toolchain.cocotb_sim.compile_logic`, cold cache) is printed too.
 
 The plain testbench gets the very transfers `rfc sim` sends, at the very cycles it sends them,
 with the same idle/backpressure pattern, and runs as many cycles (recorded by an in-process
 replay), so both simulate the same work. The marginal cost of a message is
-(t_large - t_small) / (LARGE - SMALL); the ratio is rfc sim's over the plain testbench's.
-The plain testbench's outputs are checked equal to rfc sim's. Prints a Markdown table.
+(t_large - t_small) / (LARGE - SMALL), in wall time and in CPU time (user + system of rfc sim
+and the simulator it runs, or of the plain testbench: on a loaded machine the figure that does
+not depend on the load); the ratio is rfc sim's over the plain testbench's. The plain
+testbench's outputs are checked equal to rfc sim's. Prints a Markdown table and the load.
 
 Usage: python tools/bench_sim.py [--systems quaternion odometry]
     [--simulators ghdl verilator myhdl] [--small 20] [--large-ghdl 220] [--large-verilator 2020]
@@ -33,6 +39,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import resource
 import struct
 import subprocess
 import sys
@@ -65,7 +72,12 @@ from rfc.sim.stream_engine import (  # noqa: E402
     pause_pattern,
     simulate_with_engine,
 )
-from rfc.toolchain.ghdl import STANDARD, analyze  # noqa: E402
+from rfc.toolchain.cocotb_sim import (  # noqa: E402
+    compile_logic,
+    compiled_logic,
+    ghdl_environment,
+)
+from rfc.toolchain.ghdl import STANDARD, analyze, fastest_backend  # noqa: E402
 
 QUATERNION = "geometry_msgs/msg/Quaternion"
 ODOMETRY = "nav_msgs/msg/Odometry"
@@ -203,18 +215,43 @@ def ghdl_stimulus(stimulus: Stimulus) -> str:
     return "\n".join(lines) + "\n"
 
 
-def rfc_sim(spec: Path, bag: Path, out: Path, simulator: str) -> float:
-    """Wall time of `rfc sim` as a user runs it."""
-    start = time.perf_counter()
+@dataclass(frozen=True)
+class Cost:
+    """Wall and CPU seconds (user + system of the process and everything it waited for)."""
+
+    wall: float
+    cpu: float
+
+    def __sub__(self, other: Cost) -> Cost:
+        return Cost(self.wall - other.wall, self.cpu - other.cpu)
+
+    def per(self, messages: int) -> Cost:
+        return Cost(self.wall / messages, self.cpu / messages)
+
+    def text(self) -> str:
+        return f"{1000 * self.wall:.2f} ms ({1000 * self.cpu:.2f} ms CPU)"
+
+
+def now() -> Cost:
+    """The wall clock, and the CPU time of the finished child processes so far."""
+    children = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return Cost(time.perf_counter(), children.ru_utime + children.ru_stime)
+
+
+def timed(command: list[str | Path], **options: object) -> tuple[Cost, bytes]:
+    """Run `command` to its end; what it cost and its standard output."""
+    start = now()
+    result = subprocess.run(command, check=True, capture_output=True, **options)  # type: ignore[call-overload]
+    return now() - start, result.stdout
+
+
+def rfc_sim(spec: Path, bag: Path, out: Path, simulator: str, backend: str = "") -> Cost:
+    """What `rfc sim` costs as a user runs it (on GHDL: on `backend`, else the fastest)."""
     chosen = ["--backend", "myhdl"] if simulator == "myhdl" else ["--simulator", simulator]
     options = ["--json", "--drain-cycles", str(DRAIN), *chosen]
-    subprocess.run(
-        [sys.executable, "-m", "rfc", "sim", spec, "--bag", bag, "--out", out, *options],
-        check=True,
-        capture_output=True,
-        cwd=ROOT,
-    )
-    return time.perf_counter() - start
+    command = [sys.executable, "-m", "rfc", "sim", spec, "--bag", bag, "--out", out, *options]
+    env = {**os.environ, "GHDL_BACKEND": backend} if backend else None
+    return timed(command, cwd=ROOT, env=env)[0]
 
 
 class Plain:
@@ -227,30 +264,45 @@ class Plain:
         self.lanes = self.top.bus_width // 8
         self._engine: Path | None = None
         self._ghdl_work: Path | None = None
+        self.backend = fastest_backend().name
 
-    def verilator(self, stimulus: Stimulus) -> tuple[float, list[bytes]]:
-        """Wall time of the C++ testbench and the transfers it received."""
+    def verilator(self, stimulus: Stimulus) -> tuple[Cost, list[bytes]]:
+        """What the C++ testbench costs and the transfers it received."""
         if self._engine is None:
             subscribers = DesignPlan(self.design).subscriber_names
             self._engine, _ = build_engine(self.top, subscribers)  # rfc sim's very binary
         commands = verilator_stimulus(stimulus)
-        start = time.perf_counter()
-        result = subprocess.run(
-            [str(self._engine), "--batch"], input=commands, capture_output=True, check=True
-        )
-        elapsed = time.perf_counter() - start
-        return elapsed, verilator_frames(result.stdout, stimulus.published)
+        cost, output = timed([str(self._engine), "--batch"], input=commands)
+        return cost, verilator_frames(output, stimulus.published)
 
-    def ghdl(self, stimulus: Stimulus) -> tuple[float, list[bytes]]:
-        """Wall time of the VHDL testbench (after analysis) and the transfers it received."""
+    def ghdl_compile(self) -> Cost:
+        """What GHDL's fastest back-end costs to compile rfc sim's logic once (cold cache)."""
+        backend = fastest_backend()
+        saved = os.environ.get("RFC_CACHE_DIR")
+        os.environ["RFC_CACHE_DIR"] = str(self.folder / "cold-cache")
+        try:
+            logic = compiled_logic(self.top.sources, self.top.top, backend)
+            start = now()
+            compile_logic(logic, self.top.sources)
+            return now() - start
+        finally:
+            if saved is None:
+                os.environ.pop("RFC_CACHE_DIR")
+            else:
+                os.environ["RFC_CACHE_DIR"] = saved
+
+    def ghdl(self, stimulus: Stimulus) -> tuple[Cost, list[bytes]]:
+        """What the VHDL testbench costs (after analysis) and the transfers it received."""
         work = self.folder / "ghdl"
+        backend = fastest_backend()
         if self._ghdl_work is None:
             tb = self.folder / "rfc_plain_tb.vhd"
             text = PLAIN_TB.read_text().replace("RFC_TOP", self.top.top)
             if self.top.busy:
                 text = text.replace("-- RFC_BUSY", "busy => busy,")
             tb.write_text(text)
-            analyze([*self.top.sources, tb], work, "rfc_plain_tb")
+            with ghdl_environment(backend):
+                analyze([*self.top.sources, tb], work, "rfc_plain_tb")
             self._ghdl_work = work
         source = self.folder / "stimulus.txt"
         results = self.folder / "results.txt"
@@ -258,30 +310,32 @@ class Plain:
         options = [f"--std={STANDARD}", "-fsynopsys", f"--workdir={work}"]
         generics = [f"-gstimulus={source}", f"-gresults={results}", f"-glanes={self.lanes}"]
         generics.append(f"-gbusy_bits={max(len(self.top.busy), 1)}")
-        start = time.perf_counter()
-        subprocess.run(
-            ["ghdl", "-r", *options, "rfc_plain_tb", *generics, "--ieee-asserts=disable"],
-            check=True,
-            capture_output=True,
-            cwd=work,
-        )
-        elapsed = time.perf_counter() - start
+        command = ["ghdl", "-r", *options, "rfc_plain_tb", *generics, "--ieee-asserts=disable"]
+        cost, _ = timed(command, cwd=work, env={**os.environ, **backend.environment()})
         frames = [bytes.fromhex(line) for line in results.read_text().split()]
-        return elapsed, frames
+        return cost, frames
 
 
-def cocotb_harness(spec: Path, bag: Path, folder: Path, top: SimulationTop) -> float:
-    """Wall time of the replay through the cocotb harness on Verilator."""
+def cocotb_harness(spec: Path, bag: Path, folder: Path, top: SimulationTop) -> Cost:
+    """What the replay through the cocotb harness on Verilator costs (in process)."""
     design = compile_spec(spec)
     types = message_types("ros2", bags=(str(bag),))
     topics = {topic: topic for topic in bag_topics(bag, types)}
     folder.mkdir(parents=True, exist_ok=True)
-    start = time.perf_counter()
+    start = now()
+    own = resource.getrusage(resource.RUSAGE_SELF)
     simulate_with_ghdl(
         design, bag, topics, top, folder, queues=QueueConfig(), drain_cycles=DRAIN, seed=SEED,
         simulator="verilator",
     )  # fmt: skip
-    return time.perf_counter() - start
+    after = resource.getrusage(resource.RUSAGE_SELF)
+    return now() - start + Cost(0, after.ru_utime + after.ru_stime - own.ru_utime - own.ru_stime)
+
+
+def marginal(costs: dict[int, Cost]) -> Cost:
+    """The cost of one more message, from the costs of two bags."""
+    small, large = sorted(costs)
+    return (costs[large] - costs[small]).per(large - small)
 
 
 def measure(
@@ -293,14 +347,14 @@ def measure(
     plain: Plain,
     before: dict[int, Path],
 ) -> tuple[str, ...]:
-    """One row: both bag sizes through rfc sim and the plain testbench (and the old harness)."""
+    """One row: both bag sizes through rfc sim and the plain testbench, and the path before."""
     small, large = sorted(bags)
     rfc_sim(spec, bags[small], folder / "warm.mcap", simulator)  # caches, page cache
     sim = {n: rfc_sim(spec, bag, folder / f"out{n}.mcap", simulator) for n, bag in bags.items()}
-    per_sim = (sim[large] - sim[small]) / (large - small)
+    per_sim = marginal(sim)
+    rate = f"{1 / per_sim.wall:,.1f}"
     if simulator == "myhdl":
-        cost = f"{1000 * per_sim:.3f} ms"
-        return name, simulator, f"{small} and {large}", cost, "—", "—", f"{1 / per_sim:,.1f}", "—"
+        return name, simulator, f"{small} and {large}", per_sim.text(), "—", "—", rate, "—"
     run = plain.verilator if simulator == "verilator" else plain.ghdl
     bare, outputs = {}, {}
     for count, bag in bags.items():
@@ -309,25 +363,40 @@ def measure(
         published = [m.data for m in read_bag(folder / f"out{count}.mcap", types)]
         if [frame[HEADER_SIZE:] for frame in outputs[count]] != published:
             raise SystemExit(f"{name}: the plain testbench's outputs are not rfc sim's")
-    per_plain = (bare[large] - bare[small]) / (large - small)
-    speedup = "—"
+    per_plain = marginal(bare)
     if simulator == "verilator":
-        few, many = sorted(before)
-        cocotb_harness(spec, before[few], folder / "warm-cocotb", plain.top)
+        cocotb_harness(spec, before[min(before)], folder / "warm-cocotb", plain.top)
         old = {
             n: cocotb_harness(spec, bag, folder / f"cocotb{n}", plain.top)
             for n, bag in before.items()
         }
-        per_old = (old[many] - old[few]) / (many - few)
-        speedup = f"{1000 * per_old:.2f} ms: {per_old / per_sim:.0f}x"
+        what = "cocotb harness"
+    else:
+        old = {
+            n: rfc_sim(spec, bag, folder / f"mcode{n}.mcap", "ghdl", "mcode")
+            for n, bag in bags.items()
+        }
+        for n in bags:
+            if (folder / f"mcode{n}.mcap").read_bytes() != (folder / f"out{n}.mcap").read_bytes():
+                raise SystemExit(
+                    f"{name}: rfc sim's outputs on mcode are not those on {plain.backend}"
+                )
+        compiled = plain.ghdl_compile()
+        what = (
+            f"mcode back-end (compiling on {plain.backend}: "
+            f"{compiled.wall:.1f} s, {compiled.cpu:.1f} s CPU)"
+        )
+    per_old = marginal(old)
+    ratio = f"{per_old.wall / per_sim.wall:.1f}x ({per_old.cpu / per_sim.cpu:.1f}x CPU)"
+    speedup = f"{what}: {per_old.text()}: {ratio}"
     return (
         name,
-        simulator,
+        simulator if simulator != "ghdl" else f"ghdl ({plain.backend})",
         f"{small} and {large}",
-        f"{1000 * per_sim:.3f} ms",
-        f"{1000 * per_plain:.3f} ms",
-        f"{per_sim / per_plain:.1f}x",
-        f"{1 / per_sim:,.0f}",
+        per_sim.text(),
+        per_plain.text(),
+        f"{per_sim.wall / per_plain.wall:.1f}x ({per_sim.cpu / per_plain.cpu:.1f}x CPU)",
+        rate,
         speedup,
     )
 
@@ -370,11 +439,12 @@ def main() -> None:
                 rows.append(row)
     print(
         "| system | simulator | bags | rfc sim | plain testbench | ratio | rfc sim msg/s "
-        "| cocotb harness: rfc sim's speed-up |"
+        "| the path before: rfc sim's speed-up |"
     )
     print("|---|---|---|---:|---:|---:|---:|---:|")
     for row in rows:
         print("| " + " | ".join(row) + " |")
+    print(f"load average: {' '.join(f'{load:.1f}' for load in os.getloadavg())}")
 
 
 if __name__ == "__main__":

@@ -306,6 +306,7 @@ class _Run:
             seed=self.seed,
             progress=progress,
             simulator=simulator,
+            notice=lambda line: print(line, file=sys.stderr),
         )
         self.warnings.extend(run.warnings)
         return run.published, run.account

@@ -5,7 +5,9 @@ whole-system generation — a function ``(design, directory) -> top`` whose resu
 (the entity), ``sources`` (VHDL in compile order) and ``bus_width``; the entity has the ports
 of the system contract (docs/runtime.md). The replay itself runs in the simulator
 (`rfc.sim.cosim`); this module prepares its job, runs cocotb in a worker thread while
-reporting progress, and reads the results back.
+reporting progress, and reads the results back. GHDL runs the logic on its fastest installed
+back-end: llvm (or gcc) compiles it to a program once per content of its VHDL, which later
+runs reuse from the cache (`rfc.toolchain.cocotb_sim.CompiledLogic`).
 """
 
 from __future__ import annotations
@@ -25,6 +27,8 @@ from rfc.runtime.core import Published, QueueConfig
 from rfc.runtime.records import read_records
 from rfc.runtime.stall import DEFAULT_STALL_CYCLES, StallError
 from rfc.toolchain import CosimError, run_cocotb
+from rfc.toolchain.cocotb_sim import CompiledLogic, compile_logic, compiled_logic
+from rfc.toolchain.ghdl import fastest_backend
 
 #: The top provider of the whole-system hardware generation.
 DEFAULT_TOP_PROVIDER = "rfc.lower.hardware:simulation_top"
@@ -115,6 +119,7 @@ def simulate_with_ghdl(
     seed: int = 1,
     progress: Callable[[int], None] | None = None,
     simulator: str = "ghdl",
+    notice: Callable[[str], None] | None = None,
 ) -> SimulationRun:
     """Replay `bag` through the design's logic in GHDL (or Verilator) with the runtime in cocotb.
 
@@ -133,6 +138,8 @@ def simulate_with_ghdl(
         seed: Seed of the random idle and backpressure.
         progress: Called now and then with the number of messages offered so far.
         simulator: ``ghdl`` (the VHDL) or ``verilator`` (the top's ``verilog`` files).
+        notice: Told in one line which GHDL back-end runs the logic, and whether it compiles
+            the logic or reuses what an earlier run compiled.
 
     Raises:
         CosimError: The simulation failed (a bug in rfc or in the logic).
@@ -159,6 +166,7 @@ def simulate_with_ghdl(
     }
     job_file = workdir / "job.json"
     job_file.write_text(json.dumps(job, indent=1))
+    compiled = ghdl_program(top, notice or (lambda line: None)) if simulator == "ghdl" else None
     failure: list[BaseException] = []
 
     def simulate() -> None:
@@ -171,6 +179,7 @@ def simulate_with_ghdl(
                 env={"RFC_SIM_JOB": str(job_file)},
                 seed=seed,
                 simulator=simulator,
+                compiled=compiled,
             )
         except BaseException as exc:  # handed to the caller's thread below
             failure.append(exc)
@@ -193,6 +202,30 @@ def simulate_with_ghdl(
         Account.from_json(json.loads(Path(job["account"]).read_text())),
         tuple(json.loads(Path(job["warnings"]).read_text())),
     )
+
+
+def ghdl_program(top: SimulationTop, notice: Callable[[str], None]) -> CompiledLogic | None:
+    """The logic compiled by GHDL's fastest installed back-end, once per content of its VHDL.
+
+    None when only mcode is installed: it compiles the logic in memory at every run.
+
+    Raises:
+        CosimError: GHDL cannot compile the logic.
+    """
+    backend = fastest_backend()
+    if not backend.compiles:
+        notice(
+            f"GHDL's {backend.name} back-end runs the logic (it compiles it at every run; "
+            "tools/setup.sh installs the faster llvm one)"
+        )
+        return None
+    logic = compiled_logic(top.sources, top.top, backend)
+    if logic.compiled:
+        notice(f"GHDL's {backend.name} back-end runs the logic compiled before ({logic.folder})")
+    else:
+        notice(f"GHDL's {backend.name} back-end compiles the logic, once ({logic.folder})")
+    compile_logic(logic, top.sources)
+    return logic
 
 
 def _read(path: Path) -> str:

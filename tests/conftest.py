@@ -19,6 +19,12 @@ settings.register_profile(
 )
 settings.load_profile("rfc")
 
+# `rfc sim` runs GHDL's fastest back-end, llvm, which compiles each new logic to a program
+# (about 10 s of CPU, cached). The suite builds hundreds of distinct logics once each, where
+# mcode's analysis is cheaper than llvm's compile; tests/cli/test_sim_ghdl_cache.py and
+# tests/toolchain/test_ghdl_*.py run llvm itself and check it gives mcode's bytes.
+os.environ.setdefault("GHDL_BACKEND", "mcode")
+
 
 def shared_file(relative: str) -> Path:
     """Return a file of the shared recorded data, skipping the test (saying why) when absent."""

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import importlib
 import json
+import os
 import threading
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
@@ -214,10 +215,12 @@ def ghdl_program(top: SimulationTop, notice: Callable[[str], None]) -> CompiledL
     """
     backend = fastest_backend()
     if not backend.compiles:
-        notice(
-            f"GHDL's {backend.name} back-end runs the logic (it compiles it at every run; "
-            "tools/setup.sh installs the faster llvm one)"
+        why = (
+            "GHDL_BACKEND chose it"
+            if os.environ.get("GHDL_BACKEND") == backend.name
+            else "tools/setup.sh installs the faster llvm one"
         )
+        notice(f"GHDL's {backend.name} back-end runs the logic (compiled at every run; {why})")
         return None
     logic = compiled_logic(top.sources, top.top, backend)
     if logic.compiled:

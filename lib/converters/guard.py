@@ -24,6 +24,7 @@ from rfc.lib.converters.ports import COUNTER_BITS, REASON_BITS, Direction, Port,
 from rfc.lib.converters.ram import ram
 from rfc.lib.converters.steps import Plan
 from rfc.lib.converters.subscriber import rfc_subscriber
+from rfc.lib.passthrough import take_all
 from rfc.lib.slice import SliceSide, parts_slice
 from rfc.lib.types import Instances, SignalLike
 
@@ -157,20 +158,9 @@ def frame_guard(plan: Plan, depth: int, **ports: Any) -> Any:
         reason_counter(clk, rst, drop, drop, reason, ports[counter_name(r)], int(r))
         for r in DROP_REASONS
     ]
-    held = [held_high(clk, rst, ready) for ready in readies]  # the checker takes everything
+    held = [take_all(clk, rst, ready) for ready in readies]  # the checker takes everything
     out = registered_output(clk, rst, inner, outer)
     return parser, take, give, control, memory, counters, held, out
-
-
-@block
-def held_high(clk: Any, rst: Any, signal: Any) -> Any:
-    """Hold `signal` at 1 (a register, so that no tool reads an initial value differently)."""
-
-    @always_seq(clk.posedge, reset=rst)
-    def hold() -> None:
-        signal.next = 1
-
-    return hold
 
 
 def guard_stream(ports: dict[str, SignalLike]) -> AxiStream:

@@ -33,12 +33,13 @@ from rfc.lib.axi_stream import AxiStream
 from rfc.lib.converters.checker import checker_ports, checker_signals
 from rfc.lib.converters.chunk_length import LENGTH_BITS
 from rfc.lib.converters.frame_length import frame_length_circuit, length_formula
-from rfc.lib.converters.guard import guard_ports, guard_stream, held_high, registered_output
+from rfc.lib.converters.guard import guard_ports, guard_stream, registered_output
 from rfc.lib.converters.malformed import DROP_REASONS, Reason, counter_name, reason_counter
 from rfc.lib.converters.ports import REASON_BITS, Direction, Port, PortRole
 from rfc.lib.converters.ram import ram
 from rfc.lib.converters.steps import Payload, Plan
 from rfc.lib.converters.subscriber import rfc_subscriber
+from rfc.lib.passthrough import take_all
 
 #: The port giving the frame's size as the chunk header declared it.
 DECLARED = "frame_length"
@@ -253,7 +254,7 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
         reason_counter(clk, rst, drop, drop, reason, ports[counter_name(r)], int(r))
         for r in DROP_REASONS
     ]
-    held = [held_high(clk, rst, ready) for ready in readies]  # the checker takes everything
+    held = [take_all(clk, rst, ready) for ready in readies]  # the checker takes everything
     return (
         parser, sizing, take, pad, hold_size, judge, give, clear_checker, control, memory,
         counters, held, out,

@@ -196,9 +196,9 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
         # the checker starts afresh for every frame (a register: no glitch reaches its reset)
         c_rst.next = rst == rst.active or state != storing or decided
 
-    # Three ways back to STORE clear the same registers: a process converts whole, no helper.
     @always_seq(clk.posedge, reset=rst)
     def control() -> None:
+        done = False  # the frame is over: back to STORE, the buffer empty
         if state == storing:
             if taken:
                 if written == 0 and not overflow:
@@ -213,11 +213,7 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
             if decided:
                 if drop:
                     if ended or verdict or (taken and s_tlast):
-                        state.next = storing
-                        written.next = 0
-                        read.next = 0
-                        ended.next = False
-                        overflow.next = False
+                        done = True
                     else:
                         state.next = dropping
                 else:
@@ -234,14 +230,12 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
                 out_valid.next = False
                 out_last.next = False
                 if ended:
-                    state.next = storing
-                    written.next = 0
-                    read.next = 0
-                    ended.next = False
-                    overflow.next = False
+                    done = True
                 else:
                     state.next = passing
         elif s_tvalid and s_tready and s_tlast:  # passing or dropping: the frame's end
+            done = True
+        if done:
             state.next = storing
             written.next = 0
             read.next = 0

@@ -17,10 +17,9 @@ from collections.abc import Sequence
 from myhdl import Signal, always_comb, always_seq, block, intbv
 
 from rfc.lib.converters.ports import Direction, Port, PortRole, stream_path_ports
+from rfc.lib.manager.header import HEADER_BYTES, header_assembly
 from rfc.lib.types import Instances, SignalLike
 
-#: Bytes of a chunk header, and where its fields sit (docs/protocol.md).
-HEADER_BYTES = 8
 #: Bits of the header's length field.
 LENGTH_BITS = 32
 
@@ -83,20 +82,11 @@ def chunk_length(
     """
     lanes = len(tdata) // 8
     beats = max(1, HEADER_BYTES // lanes)
-    bits = 8 * lanes
     beat = Signal(intbv(0, min=0, max=beats + 1))  # `beats`: in the payload
     stored = Signal(intbv(0)[8 * HEADER_BYTES :])
     word = Signal(intbv(0)[8 * HEADER_BYTES :])
 
-    # Assembles the header as the manager's demultiplexer does, inside its own process.
-    @always_comb
-    def assemble() -> None:
-        assembled = intbv(0)[8 * HEADER_BYTES :]
-        assembled[:] = stored
-        for index in range(beats):
-            if beat == index:
-                assembled[(index + 1) * bits : index * bits] = tdata[bits:0]
-        word.next = assembled
+    assemble = header_assembly(stored, beat, tdata, word)
 
     @always_seq(clk.posedge, reset=rst)
     def follow() -> None:

@@ -14,7 +14,14 @@ from __future__ import annotations
 
 from myhdl import Signal, always_comb, always_seq, block, enum, intbv
 
-from rfc.lib.manager.header import FLAG_END, FLAG_START, HEADER_BYTES, STATUS_ID, BusGeometry
+from rfc.lib.manager.header import (
+    FLAG_END,
+    FLAG_START,
+    HEADER_BYTES,
+    STATUS_ID,
+    BusGeometry,
+    header_assembly,
+)
 from rfc.lib.types import Instances, SignalLike
 
 #: Width of the saturating protocol-error counter.
@@ -84,15 +91,7 @@ def chunk_demux(
     asked = Signal(bool(0))
     answering = status_request is not None
 
-    @always_comb
-    def assemble_header() -> None:
-        # The header so far, with this beat's bytes in their place.
-        assembled = intbv(0)[8 * HEADER_BYTES :]
-        assembled[:] = stored
-        for index in range(header_beats):
-            if beat == index:
-                assembled[(index + 1) * width : index * width] = s_tdata
-        word.next = assembled
+    assemble_header = header_assembly(stored, beat, s_tdata, word)
 
     @always_comb
     def count_lanes() -> None:

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from myhdl import Signal, always_comb, always_seq, block, enum, intbv
 
+from rfc.lib.axi_stream import AxiStream
 from rfc.lib.manager.header import (
     FLAG_END,
     FLAG_START,
@@ -28,22 +29,12 @@ from rfc.lib.types import Instances, SignalLike
 ERROR_COUNT_BITS = 16
 
 
-# Ports as parameters, not a bundle: MyHDL declares the signals a process reads in the
-# order of its block's parameters, and a bundle would reorder the generated VHDL.
 @block
 def chunk_demux(
     clk: SignalLike,
     rst: SignalLike,
-    s_tdata: SignalLike,
-    s_tkeep: SignalLike,
-    s_tvalid: SignalLike,
-    s_tready: SignalLike,
-    s_tlast: SignalLike,
-    m_tdata: SignalLike,
-    m_tkeep: SignalLike,
-    m_tlast: SignalLike,
-    m_tvalid: SignalLike,
-    m_tready: SignalLike,
+    s: AxiStream,
+    m: AxiStream,
     error_count: SignalLike,
     width: int,
     subscribers: int,
@@ -54,22 +45,17 @@ def chunk_demux(
     Args:
         clk: Clock.
         rst: Synchronous reset, active high.
-        s_tdata: intbv[width] in, from the DMA (MM2S).
-        s_tkeep: intbv[width/8] in.
-        s_tvalid: bool in.
-        s_tready: bool out.
-        s_tlast: bool in.
-        m_tdata: intbv[width] out, shared by every subscriber.
-        m_tkeep: intbv[width/8] out, shared.
-        m_tlast: bool out, shared.
-        m_tvalid: intbv[subscribers] out, one bit per subscriber.
-        m_tready: intbv[subscribers] in, one bit per subscriber.
+        s: The stream in from the DMA (MM2S), `width` bits a beat.
+        m: The payloads out: ``tdata``, ``tkeep`` and ``tlast`` shared by every subscriber,
+            ``tvalid`` and ``tready`` one bit per subscriber.
         error_count: intbv[16] out, protocol errors seen (saturating).
         width: Bus width in bits (8, 32, 64).
         subscribers: Number of subscriber converters (≥ 1).
         status_request: bool out, high for one cycle after a status request chunk (None
             when nothing answers requests).
     """
+    s_tdata, s_tkeep, s_tvalid, s_tready, s_tlast = s.signals()
+    m_tdata, m_tkeep, m_tvalid, m_tready, m_tlast = m.signals()
     geometry = BusGeometry(width)
     lanes = geometry.lanes
     header_beats = geometry.header_beats

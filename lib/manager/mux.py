@@ -20,6 +20,7 @@ from __future__ import annotations
 
 from myhdl import Signal, always_comb, always_seq, block, enum, intbv
 
+from rfc.lib.axi_stream import AxiStream
 from rfc.lib.manager.header import FLAG_END, FLAG_START, HEADER_BYTES, BusGeometry
 from rfc.lib.schedulers.hardware import scheduler_block
 from rfc.lib.schedulers.spec import AnySchedulerSpec, CompositionSpec
@@ -33,23 +34,13 @@ def is_preemptive(spec: AnySchedulerSpec) -> bool:
     return spec.algorithm.preemptive
 
 
-# Ports as parameters, not a bundle: MyHDL declares the signals a process reads in the
-# order of its block's parameters, and a bundle would reorder the generated VHDL.
 @block
 def chunk_mux(
     clk: SignalLike,
     rst: SignalLike,
-    s_tdata: SignalLike,
-    s_tkeep: SignalLike,
-    s_tvalid: SignalLike,
-    s_tready: SignalLike,
-    s_tlast: SignalLike,
+    s: AxiStream,
     s_length: SignalLike,
-    m_tdata: SignalLike,
-    m_tkeep: SignalLike,
-    m_tvalid: SignalLike,
-    m_tready: SignalLike,
-    m_tlast: SignalLike,
+    m: AxiStream,
     width: int,
     scheduler: AnySchedulerSpec,
 ) -> Instances:
@@ -58,21 +49,17 @@ def chunk_mux(
     Args:
         clk: Clock.
         rst: Synchronous reset, active high.
-        s_tdata: intbv[publishers*width] in: publisher i's data in bits [(i+1)*width, i*width).
-        s_tkeep: intbv[publishers*width/8] in, likewise.
-        s_tvalid: intbv[publishers] in: requests.
-        s_tready: intbv[publishers] out: the scheduler's grant.
-        s_tlast: intbv[publishers] in: message ends.
+        s: The publishers' streams in, publisher i's ``tdata`` in bits [(i+1)*width, i*width)
+            and its ``tkeep`` likewise; ``tvalid`` (requests), ``tready`` (the scheduler's
+            grant) and ``tlast`` (message ends) one bit per publisher.
         s_length: intbv[publishers*32] in: each publisher's frame length in bytes, valid
             whenever its `tvalid` is high and stable until its `tlast` beat.
-        m_tdata: intbv[width] out, to the DMA (S2MM).
-        m_tkeep: intbv[width/8] out.
-        m_tvalid: bool out.
-        m_tready: bool in.
-        m_tlast: bool out.
+        m: The stream out to the DMA (S2MM), `width` bits a beat.
         width: Bus width in bits (8, 32, 64).
         scheduler: The scheduler, one input per publisher (its `n` is the publisher count).
     """
+    s_tdata, s_tkeep, s_tvalid, s_tready, s_tlast = s.signals()
+    m_tdata, m_tkeep, m_tvalid, m_tready, m_tlast = m.signals()
     geometry = BusGeometry(width)
     lanes = geometry.lanes
     header_beats = geometry.header_beats

@@ -157,7 +157,6 @@ def chunk_mux(
         ready.next = state == t_state.PAYLOAD and owner_offered and space
         s_tready.next = grant
 
-    # head and tail take the same moves in this one process: a MyHDL process converts whole.
     @always_seq(clk.posedge, reset=rst)
     def sequence() -> None:
         # What enters the buffer this cycle, if anything, and whether the chunk ends on the
@@ -211,27 +210,14 @@ def chunk_mux(
             ending = True
             state.next = t_state.IDLE
 
-        # The buffer: the head leaves, the entering beat joins behind what stays (the same
-        # three fields move each time; a process converts whole, so each move is written out).
-        if leaving:
-            if count == 2:
-                head_data.next = tail_data
-                head_keep.next = tail_keep
-                head_last.next = tail_last or ending
-                if enter:
-                    tail_data.next = enter_data
-                    tail_keep.next = enter_keep
-                    tail_last.next = enter_last
-                else:
-                    count.next = 1
-            elif enter:
-                head_data.next = enter_data
-                head_keep.next = enter_keep
-                head_last.next = enter_last
-            else:
-                count.next = 0
-        elif enter:
-            if count == 0:
+        # The buffer: the head leaves and the tail moves up; the entering beat joins behind
+        # what stays, and a chunk's end with nothing entering marks the youngest beat held.
+        if leaving and count == 2:
+            head_data.next = tail_data
+            head_keep.next = tail_keep
+            head_last.next = tail_last or ending
+        if enter:
+            if count == 0 or (leaving and count == 1):
                 head_data.next = enter_data
                 head_keep.next = enter_keep
                 head_last.next = enter_last
@@ -239,7 +225,10 @@ def chunk_mux(
                 tail_data.next = enter_data
                 tail_keep.next = enter_keep
                 tail_last.next = enter_last
-            count.next = count + 1
+            if not leaving:
+                count.next = count + 1
+        elif leaving:
+            count.next = count - 1
         elif ending:
             if count == 2:
                 tail_last.next = True

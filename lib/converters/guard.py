@@ -97,19 +97,14 @@ def frame_guard(plan: Plan, depth: int, **ports: Any) -> Any:
         s_tready.next = state == storing and c_ready
         c_valid.next = state == storing and s_tvalid
         w_enable.next = state == storing and s_tvalid and c_ready and written < depth
-        address.next = 0
-        if written < depth:
-            address.next = written
-        r_address.next = 0
-        if read < depth:
-            r_address.next = read
         r_enable.next = state == sending and read < written and (not out_valid or m_tready)
         drop.next = state == waiting and verdict and (failed or overflow)
         reason.next = maximum
         if failed:
             reason.next = cause
 
-    # Drives the output from this guard's registers, as the slice and the mux do from theirs.
+    addresses = buffer_addresses(written, read, depth, address, r_address)
+
     @always_comb
     def give() -> None:
         m_tdata.next = r_data
@@ -160,7 +155,25 @@ def frame_guard(plan: Plan, depth: int, **ports: Any) -> Any:
     ]
     held = [take_all(clk, rst, ready) for ready in readies]  # the checker takes everything
     out = registered_output(clk, rst, inner, outer)
-    return parser, take, give, control, memory, counters, held, out
+    return parser, take, addresses, give, control, memory, counters, held, out
+
+
+@block
+def buffer_addresses(
+    written: SignalLike, read: SignalLike, depth: int, address: SignalLike, r_address: SignalLike
+) -> Instances:
+    """A guard's RAM addresses: beats `written` and `read` so far, 0 once they reach `depth`."""
+
+    @always_comb
+    def clamp() -> None:
+        address.next = 0
+        if written < depth:
+            address.next = written
+        r_address.next = 0
+        if read < depth:
+            r_address.next = read
+
+    return clamp
 
 
 def guard_stream(ports: dict[str, SignalLike]) -> AxiStream:

@@ -33,7 +33,12 @@ from rfc.lib.axi_stream import AxiStream
 from rfc.lib.converters.checker import checker_ports, checker_signals
 from rfc.lib.converters.chunk_length import LENGTH_BITS
 from rfc.lib.converters.frame_length import frame_length_circuit, length_formula
-from rfc.lib.converters.guard import guard_ports, guard_stream, registered_output
+from rfc.lib.converters.guard import (
+    buffer_addresses,
+    guard_ports,
+    guard_stream,
+    registered_output,
+)
 from rfc.lib.converters.malformed import DROP_REASONS, Reason, counter_name, reason_counter
 from rfc.lib.converters.ports import REASON_BITS, Direction, Port, PortRole
 from rfc.lib.converters.ram import ram
@@ -115,8 +120,6 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
     storing, replaying, passing, dropping = (int(s) for s in _State)
     maximum, truncated, trailing = int(Reason.MAXIMUM), int(Reason.TRUNCATED), int(Reason.TRAILING)
 
-    # Addressing and output as `frame_guard`'s processes: MyHDL converts a process whole, so
-    # each guard's VHDL keeps its own.
     @always_comb
     def take() -> None:
         taking = state == storing and c_rst != c_rst.active and not ended
@@ -129,12 +132,6 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
             s_tready.next = 1
         else:
             s_tready.next = taking and c_ready
-        address.next = 0
-        if written < depth:
-            address.next = written
-        r_address.next = 0
-        if read < depth:
-            r_address.next = read
         r_enable.next = state == replaying and read < written and (not out_valid or m_tready)
 
     @always_comb
@@ -175,7 +172,9 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
             ok = True  # the checker's verdict, or a started frame of the declared size
         drop.next = judging and (verdict or was_started) and not ok
 
-    # `frame_guard`'s output, and the bus straight through while PASS: a process of its own.
+    addresses = buffer_addresses(written, read, depth, address, r_address)
+
+    # The frame guard's `give`, and the bus straight through while PASS.
     @always_comb
     def give() -> None:
         if state == passing:
@@ -250,6 +249,6 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
     ]
     held = [take_all(clk, rst, ready) for ready in readies]  # the checker takes everything
     return (
-        parser, sizing, take, pad, hold_size, judge, give, clear_checker, control, memory,
-        counters, held, out,
+        parser, sizing, take, addresses, pad, hold_size, judge, give, clear_checker, control,
+        memory, counters, held, out,
     )  # fmt: skip

@@ -58,20 +58,10 @@ def _owners(plan: Plan) -> tuple[int, ...]:
 
 def _length_inputs(plan: Plan) -> tuple[list[str], tuple[int, ...]]:
     """The length and count input ports, and per step the position of its own (0: none)."""
-    names: list[str] = []
-    index = []
-    for step in plan.steps:
-        port = None
-        if isinstance(step, Payload):
-            port = step.length_port
-        elif isinstance(step, Loop):
-            port = step.count_port
-        if port:
-            names.append(port)
-            index.append(len(names))
-        else:
-            index.append(0)
-    return names, tuple(index)
+    index = [0] * len(plan.steps)
+    for position, (at, _) in enumerate(plan.length_ports(), start=1):
+        index[at] = position
+    return [name for _, name in plan.length_ports()], tuple(index)
 
 
 @block

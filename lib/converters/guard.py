@@ -105,6 +105,7 @@ def frame_guard(plan: Plan, depth: int, **ports: Any) -> Any:
 
     addresses = buffer_addresses(written, read, depth, address, r_address)
 
+    # Drives the output from this guard's registers, as the slice and the mux do from theirs.
     @always_comb
     def give() -> None:
         m_tdata.next = r_data
@@ -158,6 +159,7 @@ def frame_guard(plan: Plan, depth: int, **ports: Any) -> Any:
     return parser, take, addresses, give, control, memory, counters, held, out
 
 
+# A small block's shape (as publisher.draining_ready's); its logic, a clamp, is the guards' own.
 @block
 def buffer_addresses(
     written: SignalLike, read: SignalLike, depth: int, address: SignalLike, r_address: SignalLike

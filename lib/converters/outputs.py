@@ -17,6 +17,7 @@ from rfc.lib.converters.wiring import bits_of, follow, index_bit
 from rfc.lib.types import Instances, SignalLike
 
 
+# One clocked process, the shape of many small blocks: here a register loaded at one step.
 @block
 def length_register(
     clk: SignalLike,

@@ -174,7 +174,7 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
 
     addresses = buffer_addresses(written, read, depth, address, r_address)
 
-    # The frame guard's `give`, and the bus straight through while PASS.
+    # The frame guard's `give` (which has no PASS to select), and the bus straight through in PASS.
     @always_comb
     def give() -> None:
         if state == passing:
@@ -195,6 +195,7 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
         # the checker starts afresh for every frame (a register: no glitch reaches its reset)
         c_rst.next = rst == rst.active or state != storing or decided
 
+    # Stores a beat as `frame_guard`'s control does; each control also clears what it stores.
     @always_seq(clk.posedge, reset=rst)
     def control() -> None:
         done = False  # the frame is over: back to STORE, the buffer empty

@@ -171,7 +171,8 @@ def rfc_publisher(
     loop_more = [Signal(bool(0)) for _ in t.loops]
     more = Signal(bool(0)) if t.loops else Constant(bool(0))
 
-    # Reads the step ROMs as the subscriber's `control` does; a MyHDL process converts whole.
+    # Walks the steps as the subscriber's `control` does, but writes bytes under backpressure
+    # where that one reads them and aborts: one walker for both would split each process.
     @always_comb
     def control() -> None:
         kind = kind_rom[pc]
@@ -332,7 +333,7 @@ def rfc_publisher(
         else:
             gap_n.next = (int(gap) + 8 - step) % 8
 
-    # Latches the next values as the subscriber's `registers` does: a process converts whole.
+    # Latches the walk's registers as the subscriber's `registers` does, and its own beside.
     @always_seq(clk.posedge, reset=rst)
     def registers() -> None:
         pc.next = pc_n

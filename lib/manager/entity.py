@@ -242,6 +242,7 @@ def publisher_inputs(
     return parts
 
 
+# One bit to every bit: shaped like the statechart's grant gate, which selects a vector.
 @block
 def spread_bit(bit: SignalLike, vector: SignalLike) -> Instances:
     """Drive every bit of `vector` with `bit`."""

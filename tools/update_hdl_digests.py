@@ -3,7 +3,9 @@
 tests/examples/test_hdl_digests.py builds every example and compares its VHDL with these
 digests, byte for byte, so a refactoring proves it leaves the hardware unchanged. Run this
 only when a change means to alter the generated hardware (a generator's new feature or fix, a
-new example), review which files changed, and say why in the commit.
+new example), review which files changed, and say why in the commit; a refactoring that
+changes only the text (labels, a VHDL function for shared code) first proves each changed file
+the same circuit with tools/check_hdl_equivalence.py.
 
 Usage: .venv/bin/python tools/update_hdl_digests.py [SPEC...]   (default: every example)
 """

@@ -1,11 +1,10 @@
 """An AXI-Stream port bundle: the five signals a stream block passes together.
 
-The subscriber's byte window and the publisher's packer and frame buffer each take one whole
-stream; the bundle names its ports once. A block binds the signals to its own local names at
-elaboration (`AxiStream.signals`). That keeps the generated VHDL as it was only where the
-signals are named higher up (converter ports, the converter's own signals): MyHDL declares
-the signals a block names itself in the order of its parameters, so the manager's blocks, whose
-streams it names, keep their ports as parameters.
+The subscriber's byte window, the publisher's packer and frame buffer, and the manager's
+demultiplexer, multiplexer and status inserter each take whole streams; the bundle names its
+ports once. A block binds the signals to its own local names at elaboration
+(`AxiStream.signals`), so its processes read ``s_tdata`` and the like as before. Converted as
+the top level, a block's bundle parameter ``s`` gives the ports ``s_tdata`` … ``s_tlast``.
 """
 
 from __future__ import annotations

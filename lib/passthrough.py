@@ -49,10 +49,12 @@ def typed_pass_through(
     return wires, [take_all(clk, rst, ready) for ready in _unmatched_readies(in0, out0)]
 
 
-# `guard.held_high` under its own name, which MyHDL gives its process in the VHDL.
 @block
 def take_all(clk: SignalLike, rst: SignalLike, ready: SignalLike) -> Instances:
-    """Hold `ready` high after reset: a part of the message no output carries is dropped."""
+    """Hold `ready` high after reset: whatever its stream or message brings is taken and dropped.
+
+    A register, not a constant, so that no tool reads an initial value differently.
+    """
 
     @always_seq(clk.posedge, reset=rst)
     def take() -> None:

@@ -18,6 +18,7 @@ from rfc.lib.converters.ports import Port, Side, dma_ports, ports_of
 from rfc.lib.converters.publisher import rfc_publisher
 from rfc.lib.converters.steps import Payload, Plan
 from rfc.lib.converters.toplevel import port_signals
+from rfc.lib.slice import part_of
 from rfc.lib.types import Instances, SignalLike
 
 # the sizes are reexported: the system's lowering takes both from here
@@ -28,12 +29,11 @@ __all__ = [
     "buffered_publisher",
     "buffers_of",
     "split",
-    "split_bit",
     "stream_buffers",
 ]
 
 
-# `slice.part_of`'s two cases under their own names, which name their VHDL processes.
+# The HLS adapter's (`rfc.lib.hls.adapter`); a buffer's own words are cut with `part_of`.
 @block
 def split(word: SignalLike, low: int, target: SignalLike) -> Instances:
     """Drive `target` with the bits of `word` from `low` up."""
@@ -42,17 +42,6 @@ def split(word: SignalLike, low: int, target: SignalLike) -> Instances:
     @always_comb
     def extract() -> None:
         target.next = word[high:low]
-
-    return extract
-
-
-@block
-def split_bit(word: SignalLike, low: int, target: SignalLike) -> Instances:
-    """Drive the single-bit `target` with bit `low` of `word`."""
-
-    @always_comb
-    def extract() -> None:
-        target.next = word[low]
 
     return extract
 
@@ -93,10 +82,7 @@ def stream_buffers(
         low = 0
         for port in data:
             target = publisher[port]
-            if isinstance(target.val, bool):
-                blocks.append(split_bit(word_out, low, target))
-            else:
-                blocks.append(split(word_out, low, target))
+            blocks.append(part_of(word_out, low, len(target), isinstance(target.val, bool), target))
             low += len(target)
     return blocks
 

@@ -14,13 +14,14 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from myhdl import Signal, always_comb, always_seq, block, intbv
+from myhdl import Signal, always_seq, block, intbv
 
+from rfc.lib.axi_stream import AxiStream
 from rfc.lib.converters.ports import Direction, Port, PortRole, stream_path_ports
+from rfc.lib.converters.wiring import follow
+from rfc.lib.manager.header import HEADER_BYTES, header_assembly
 from rfc.lib.types import Instances, SignalLike
 
-#: Bytes of a chunk header, and where its fields sit (docs/protocol.md).
-HEADER_BYTES = 8
 #: Bits of the header's length field.
 LENGTH_BITS = 32
 
@@ -37,25 +38,14 @@ def dma_tap_ports(width: int, subscribers: Sequence[int]) -> list[Port]:
     ]
 
 
-# Its `through` process is a plain wire; the guards' and the mux's look alike but select.
 @block
 def dma_tap(subscribers: Sequence[int], **ports: SignalLike) -> Instances:
     """The DMA stream passed on, and each subscriber's declared length; `ports`: `dma_tap_ports`."""
-    s_data, s_keep, s_valid, s_ready, s_last = (
-        ports[f"s_axis_{n}"] for n in ("tdata", "tkeep", "tvalid", "tready", "tlast")
-    )
-    m_data, m_keep, m_valid, m_ready, m_last = (
-        ports[f"m_axis_{n}"] for n in ("tdata", "tkeep", "tvalid", "tready", "tlast")
-    )
-
-    # Drives a stream's signals as other blocks' output processes do, from its own inputs.
-    @always_comb
-    def through() -> None:
-        m_data.next = s_data
-        m_keep.next = s_keep
-        m_valid.next = s_valid
-        m_last.next = s_last
-        s_ready.next = m_ready
+    s_data, s_keep, s_valid, s_ready, s_last = AxiStream.named(ports, "s_axis").signals()
+    m_data, m_keep, m_valid, m_ready, m_last = AxiStream.named(ports, "m_axis").signals()
+    forward = ((s_data, m_data), (s_keep, m_keep), (s_valid, m_valid), (s_last, m_last))
+    through = [follow(source, target) for source, target in forward]
+    through.append(follow(m_ready, s_ready))  # a plain wire both ways: no register, no cycle
 
     lengths = [
         chunk_length(ports["clk"], ports["rst"], ident, s_data, s_valid, m_ready, s_last,
@@ -83,20 +73,11 @@ def chunk_length(
     """
     lanes = len(tdata) // 8
     beats = max(1, HEADER_BYTES // lanes)
-    bits = 8 * lanes
     beat = Signal(intbv(0, min=0, max=beats + 1))  # `beats`: in the payload
     stored = Signal(intbv(0)[8 * HEADER_BYTES :])
     word = Signal(intbv(0)[8 * HEADER_BYTES :])
 
-    # Assembles the header as the manager's demultiplexer does, inside its own process.
-    @always_comb
-    def assemble() -> None:
-        assembled = intbv(0)[8 * HEADER_BYTES :]
-        assembled[:] = stored
-        for index in range(beats):
-            if beat == index:
-                assembled[(index + 1) * bits : index * bits] = tdata[bits:0]
-        word.next = assembled
+    assemble = header_assembly(stored, beat, tdata, word)
 
     @always_seq(clk.posedge, reset=rst)
     def follow() -> None:

@@ -177,8 +177,11 @@ def counted_stage(
 
 
 @block
-def accumulate(total_in: SignalLike, term: SignalLike, total_out: SignalLike) -> Instances:
-    """One adder of the chain that sums the terms."""
+def accumulate(total_in: SignalLike, term: SignalLike | int, total_out: SignalLike) -> Instances:
+    """``total_out = total_in + term`` (a signal, or a constant MyHDL writes into the VHDL).
+
+    An adder of the chain that sums the frame's terms, or a length prefix's count plus its NUL.
+    """
 
     @always_comb
     def add() -> None:

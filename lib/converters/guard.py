@@ -24,6 +24,7 @@ from rfc.lib.converters.ports import COUNTER_BITS, REASON_BITS, Direction, Port,
 from rfc.lib.converters.ram import ram
 from rfc.lib.converters.steps import Plan
 from rfc.lib.converters.subscriber import rfc_subscriber
+from rfc.lib.passthrough import take_all
 from rfc.lib.slice import SliceSide, parts_slice
 from rfc.lib.types import Instances, SignalLike
 
@@ -96,17 +97,13 @@ def frame_guard(plan: Plan, depth: int, **ports: Any) -> Any:
         s_tready.next = state == storing and c_ready
         c_valid.next = state == storing and s_tvalid
         w_enable.next = state == storing and s_tvalid and c_ready and written < depth
-        address.next = 0
-        if written < depth:
-            address.next = written
-        r_address.next = 0
-        if read < depth:
-            r_address.next = read
         r_enable.next = state == sending and read < written and (not out_valid or m_tready)
         drop.next = state == waiting and verdict and (failed or overflow)
         reason.next = maximum
         if failed:
             reason.next = cause
+
+    addresses = buffer_addresses(written, read, depth, address, r_address)
 
     # Drives the output from this guard's registers, as the slice and the mux do from theirs.
     @always_comb
@@ -157,20 +154,28 @@ def frame_guard(plan: Plan, depth: int, **ports: Any) -> Any:
         reason_counter(clk, rst, drop, drop, reason, ports[counter_name(r)], int(r))
         for r in DROP_REASONS
     ]
-    held = [held_high(clk, rst, ready) for ready in readies]  # the checker takes everything
+    held = [take_all(clk, rst, ready) for ready in readies]  # the checker takes everything
     out = registered_output(clk, rst, inner, outer)
-    return parser, take, give, control, memory, counters, held, out
+    return parser, take, addresses, give, control, memory, counters, held, out
 
 
+# A small block's shape (as publisher.draining_ready's); its logic, a clamp, is the guards' own.
 @block
-def held_high(clk: Any, rst: Any, signal: Any) -> Any:
-    """Hold `signal` at 1 (a register, so that no tool reads an initial value differently)."""
+def buffer_addresses(
+    written: SignalLike, read: SignalLike, depth: int, address: SignalLike, r_address: SignalLike
+) -> Instances:
+    """A guard's RAM addresses: beats `written` and `read` so far, 0 once they reach `depth`."""
 
-    @always_seq(clk.posedge, reset=rst)
-    def hold() -> None:
-        signal.next = 1
+    @always_comb
+    def clamp() -> None:
+        address.next = 0
+        if written < depth:
+            address.next = written
+        r_address.next = 0
+        if read < depth:
+            r_address.next = read
 
-    return hold
+    return clamp
 
 
 def guard_stream(ports: dict[str, SignalLike]) -> AxiStream:

@@ -11,12 +11,13 @@ from __future__ import annotations
 
 from myhdl import always_comb, always_seq, block
 
-from rfc.lib.converters.steps import Loop, Payload, Plan
+from rfc.lib.converters.steps import Loop, Plan
 from rfc.lib.converters.tables import tables
 from rfc.lib.converters.wiring import bits_of, follow, index_bit
 from rfc.lib.types import Instances, SignalLike
 
 
+# One clocked process, the shape of many small blocks: here a register loaded at one step.
 @block
 def length_register(
     clk: SignalLike,
@@ -49,16 +50,10 @@ def length_registers(
     value: SignalLike,
 ) -> Instances:
     """One `length_register` per selected string or sequence."""
-    blocks = []
-    for at, step in enumerate(plan.steps):
-        name = None
-        if isinstance(step, Payload):
-            name = step.length_port
-        elif isinstance(step, Loop):
-            name = step.count_port
-        if name:
-            blocks.append(length_register(clk, rst, fire, pc, at, value, ports[name]))
-    return blocks
+    return [
+        length_register(clk, rst, fire, pc, at, value, ports[name])
+        for at, name in plan.length_ports()
+    ]
 
 
 @block

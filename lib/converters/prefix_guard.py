@@ -33,12 +33,18 @@ from rfc.lib.axi_stream import AxiStream
 from rfc.lib.converters.checker import checker_ports, checker_signals
 from rfc.lib.converters.chunk_length import LENGTH_BITS
 from rfc.lib.converters.frame_length import frame_length_circuit, length_formula
-from rfc.lib.converters.guard import guard_ports, guard_stream, held_high, registered_output
+from rfc.lib.converters.guard import (
+    buffer_addresses,
+    guard_ports,
+    guard_stream,
+    registered_output,
+)
 from rfc.lib.converters.malformed import DROP_REASONS, Reason, counter_name, reason_counter
 from rfc.lib.converters.ports import REASON_BITS, Direction, Port, PortRole
 from rfc.lib.converters.ram import ram
 from rfc.lib.converters.steps import Payload, Plan
 from rfc.lib.converters.subscriber import rfc_subscriber
+from rfc.lib.passthrough import take_all
 
 #: The port giving the frame's size as the chunk header declared it.
 DECLARED = "frame_length"
@@ -114,8 +120,6 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
     storing, replaying, passing, dropping = (int(s) for s in _State)
     maximum, truncated, trailing = int(Reason.MAXIMUM), int(Reason.TRUNCATED), int(Reason.TRAILING)
 
-    # Addressing and output as `frame_guard`'s processes: MyHDL converts a process whole, so
-    # each guard's VHDL keeps its own.
     @always_comb
     def take() -> None:
         taking = state == storing and c_rst != c_rst.active and not ended
@@ -128,12 +132,6 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
             s_tready.next = 1
         else:
             s_tready.next = taking and c_ready
-        address.next = 0
-        if written < depth:
-            address.next = written
-        r_address.next = 0
-        if read < depth:
-            r_address.next = read
         r_enable.next = state == replaying and read < written and (not out_valid or m_tready)
 
     @always_comb
@@ -174,7 +172,9 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
             ok = True  # the checker's verdict, or a started frame of the declared size
         drop.next = judging and (verdict or was_started) and not ok
 
-    # `frame_guard`'s output, and the bus straight through while PASS: a process of its own.
+    addresses = buffer_addresses(written, read, depth, address, r_address)
+
+    # The frame guard's `give` (which has no PASS to select), and the bus straight through in PASS.
     @always_comb
     def give() -> None:
         if state == passing:
@@ -195,9 +195,10 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
         # the checker starts afresh for every frame (a register: no glitch reaches its reset)
         c_rst.next = rst == rst.active or state != storing or decided
 
-    # Three ways back to STORE clear the same registers: a process converts whole, no helper.
+    # Stores a beat as `frame_guard`'s control does; each control also clears what it stores.
     @always_seq(clk.posedge, reset=rst)
     def control() -> None:
+        done = False  # the frame is over: back to STORE, the buffer empty
         if state == storing:
             if taken:
                 if written == 0 and not overflow:
@@ -212,11 +213,7 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
             if decided:
                 if drop:
                     if ended or verdict or (taken and s_tlast):
-                        state.next = storing
-                        written.next = 0
-                        read.next = 0
-                        ended.next = False
-                        overflow.next = False
+                        done = True
                     else:
                         state.next = dropping
                 else:
@@ -233,14 +230,12 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
                 out_valid.next = False
                 out_last.next = False
                 if ended:
-                    state.next = storing
-                    written.next = 0
-                    read.next = 0
-                    ended.next = False
-                    overflow.next = False
+                    done = True
                 else:
                     state.next = passing
         elif s_tvalid and s_tready and s_tlast:  # passing or dropping: the frame's end
+            done = True
+        if done:
             state.next = storing
             written.next = 0
             read.next = 0
@@ -253,8 +248,8 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
         reason_counter(clk, rst, drop, drop, reason, ports[counter_name(r)], int(r))
         for r in DROP_REASONS
     ]
-    held = [held_high(clk, rst, ready) for ready in readies]  # the checker takes everything
+    held = [take_all(clk, rst, ready) for ready in readies]  # the checker takes everything
     return (
-        parser, sizing, take, pad, hold_size, judge, give, clear_checker, control, memory,
-        counters, held, out,
+        parser, sizing, take, addresses, pad, hold_size, judge, give, clear_checker, control,
+        memory, counters, held, out,
     )  # fmt: skip

@@ -58,20 +58,10 @@ def _owners(plan: Plan) -> tuple[int, ...]:
 
 def _length_inputs(plan: Plan) -> tuple[list[str], tuple[int, ...]]:
     """The length and count input ports, and per step the position of its own (0: none)."""
-    names: list[str] = []
-    index = []
-    for step in plan.steps:
-        port = None
-        if isinstance(step, Payload):
-            port = step.length_port
-        elif isinstance(step, Loop):
-            port = step.count_port
-        if port:
-            names.append(port)
-            index.append(len(names))
-        else:
-            index.append(0)
-    return names, tuple(index)
+    index = [0] * len(plan.steps)
+    for position, (at, _) in enumerate(plan.length_ports(), start=1):
+        index[at] = position
+    return [name for _, name in plan.length_ports()], tuple(index)
 
 
 @block
@@ -181,7 +171,8 @@ def rfc_publisher(
     loop_more = [Signal(bool(0)) for _ in t.loops]
     more = Signal(bool(0)) if t.loops else Constant(bool(0))
 
-    # Reads the step ROMs as the subscriber's `control` does; a MyHDL process converts whole.
+    # Walks the steps as the subscriber's `control` does, but writes bytes under backpressure
+    # where that one reads them and aborts: one walker for both would split each process.
     @always_comb
     def control() -> None:
         kind = kind_rom[pc]
@@ -342,7 +333,7 @@ def rfc_publisher(
         else:
             gap_n.next = (int(gap) + 8 - step) % 8
 
-    # Latches the next values as the subscriber's `registers` does: a process converts whole.
+    # Latches the walk's registers as the subscriber's `registers` does, and its own beside.
     @always_seq(clk.posedge, reset=rst)
     def registers() -> None:
         pc.next = pc_n

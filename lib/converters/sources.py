@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from myhdl import ConcatSignal, Constant, Signal, always_comb, block, intbv
 
+from rfc.lib.converters.frame_length import accumulate
 from rfc.lib.converters.steps import Loop, Payload, Plan, SlotRole, Step
 from rfc.lib.converters.tables import pieces, tables
 from rfc.lib.types import Instances, SignalLike
@@ -33,18 +34,6 @@ def lane_select(
             out.next[bit] = bus[8 * at + bit]
 
     return select
-
-
-# Adds a constant, unlike `frame_length.accumulate`: MyHDL writes it into the VHDL.
-@block
-def prefix_value(length: SignalLike, terminator: int, prefix: SignalLike) -> Instances:
-    """The uint32 a length prefix carries: the count, plus the NUL for a CDR string."""
-
-    @always_comb
-    def add() -> None:
-        prefix.next = length + terminator
-
-    return add
 
 
 def _byte(source: SignalLike, index: int) -> list[SignalLike]:
@@ -78,7 +67,8 @@ def record_sources(
                 port, terminator = _prefixed(plan.steps[pc + 1])
                 if port:
                     value = Signal(intbv(0)[32:])
-                    blocks.append(prefix_value(ports[port], terminator, value))
+                    # the uint32 a prefix carries: the count, plus the NUL of a CDR string
+                    blocks.append(accumulate(ports[port], terminator, value))
                 elif terminator:
                     value = Constant(intbv(terminator)[32:])  # an empty CDR string: its NUL
                 else:

@@ -244,6 +244,19 @@ class Plan:
         assert isinstance(step, Loop), f"step {at} is a {type(step).__name__}, not a Loop"
         return step
 
+    def length_ports(self) -> list[tuple[int, str]]:
+        """The steps whose count has a port (selected strings, sequences, loops), with it."""
+        found = []
+        for at, step in enumerate(self.steps):
+            port = None
+            if isinstance(step, Payload):
+                port = step.length_port
+            elif isinstance(step, Loop):
+                port = step.count_port
+            if port:
+                found.append((at, port))
+        return found
+
     def records(self) -> list[tuple[int, Record]]:
         """Return the record steps with their step indices."""
         return [(i, s) for i, s in enumerate(self.steps) if isinstance(s, Record)]

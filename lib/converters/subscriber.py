@@ -162,7 +162,8 @@ def rfc_subscriber(plan: Plan, **ports: SignalLike) -> Instances:
         else:
             data.next = front
 
-    # Reads the step ROMs as the publisher's `control` does; a MyHDL process converts whole.
+    # Walks the steps as the publisher's `control` does, but reads bytes and aborts where that
+    # one writes them under backpressure: one walker for both would split each process.
     @always_comb
     def control() -> None:
         kind = kind_rom[pc]

@@ -14,29 +14,27 @@ from __future__ import annotations
 
 from myhdl import Signal, always_comb, always_seq, block, enum, intbv
 
-from rfc.lib.manager.header import FLAG_END, FLAG_START, HEADER_BYTES, STATUS_ID, BusGeometry
+from rfc.lib.axi_stream import AxiStream
+from rfc.lib.manager.header import (
+    FLAG_END,
+    FLAG_START,
+    HEADER_BYTES,
+    STATUS_ID,
+    BusGeometry,
+    header_assembly,
+)
 from rfc.lib.types import Instances, SignalLike
 
 #: Width of the saturating protocol-error counter.
 ERROR_COUNT_BITS = 16
 
 
-# Ports as parameters, not a bundle: MyHDL declares the signals a process reads in the
-# order of its block's parameters, and a bundle would reorder the generated VHDL.
 @block
 def chunk_demux(
     clk: SignalLike,
     rst: SignalLike,
-    s_tdata: SignalLike,
-    s_tkeep: SignalLike,
-    s_tvalid: SignalLike,
-    s_tready: SignalLike,
-    s_tlast: SignalLike,
-    m_tdata: SignalLike,
-    m_tkeep: SignalLike,
-    m_tlast: SignalLike,
-    m_tvalid: SignalLike,
-    m_tready: SignalLike,
+    s: AxiStream,
+    m: AxiStream,
     error_count: SignalLike,
     width: int,
     subscribers: int,
@@ -47,22 +45,17 @@ def chunk_demux(
     Args:
         clk: Clock.
         rst: Synchronous reset, active high.
-        s_tdata: intbv[width] in, from the DMA (MM2S).
-        s_tkeep: intbv[width/8] in.
-        s_tvalid: bool in.
-        s_tready: bool out.
-        s_tlast: bool in.
-        m_tdata: intbv[width] out, shared by every subscriber.
-        m_tkeep: intbv[width/8] out, shared.
-        m_tlast: bool out, shared.
-        m_tvalid: intbv[subscribers] out, one bit per subscriber.
-        m_tready: intbv[subscribers] in, one bit per subscriber.
+        s: The stream in from the DMA (MM2S), `width` bits a beat.
+        m: The payloads out: ``tdata``, ``tkeep`` and ``tlast`` shared by every subscriber,
+            ``tvalid`` and ``tready`` one bit per subscriber.
         error_count: intbv[16] out, protocol errors seen (saturating).
         width: Bus width in bits (8, 32, 64).
         subscribers: Number of subscriber converters (≥ 1).
         status_request: bool out, high for one cycle after a status request chunk (None
             when nothing answers requests).
     """
+    s_tdata, s_tkeep, s_tvalid, s_tready, s_tlast = s.signals()
+    m_tdata, m_tkeep, m_tvalid, m_tready, m_tlast = m.signals()
     geometry = BusGeometry(width)
     lanes = geometry.lanes
     header_beats = geometry.header_beats
@@ -84,15 +77,7 @@ def chunk_demux(
     asked = Signal(bool(0))
     answering = status_request is not None
 
-    @always_comb
-    def assemble_header() -> None:
-        # The header so far, with this beat's bytes in their place.
-        assembled = intbv(0)[8 * HEADER_BYTES :]
-        assembled[:] = stored
-        for index in range(header_beats):
-            if beat == index:
-                assembled[(index + 1) * width : index * width] = s_tdata
-        word.next = assembled
+    assemble_header = header_assembly(stored, beat, s_tdata, word)
 
     @always_comb
     def count_lanes() -> None:

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 from myhdl import ConcatSignal, Signal, always, always_comb, block, intbv
 
+from rfc.lib.axi_stream import AxiStream
 from rfc.lib.converters.malformed import DROP_REASONS, status_port
 from rfc.lib.converters.ports import (
     COUNTER_BITS,
@@ -127,8 +128,8 @@ def manager_body(shape: ManagerShape, **ports: SignalLike) -> Instances:
     parts.append(spread_bit(taken, tready))
     parts.append(
         chunk_demux(
-            clk, rst, mm2s[0], mm2s[1], mm2s_valid, mm2s_ready, mm2s[2], beat[0], beat[1], beat[2],
-            tvalid, tready,
+            clk, rst, AxiStream(mm2s[0], mm2s[1], mm2s_valid, mm2s_ready, mm2s[2]),
+            AxiStream(beat[0], beat[1], tvalid, tready, beat[2]),
             ports["error_count"], width=width, subscribers=fanout, status_request=request,
         )
     )  # fmt: skip
@@ -166,9 +167,10 @@ def manager_body(shape: ManagerShape, **ports: SignalLike) -> Instances:
         assert single is None  # four reasons per subscriber
     parts.append(
         status_inserter(
-            clk, rst, request, counters, out["tdata"], out["tkeep"], out["tvalid"], out_ready,
-            out["tlast"], s2mm["tdata"], s2mm["tkeep"], s2mm["tvalid"], s2mm_ready,
-            s2mm["tlast"], width=width, count=len(status_inputs(n_sub)),
+            clk, rst, request, counters,
+            AxiStream(out["tdata"], out["tkeep"], out["tvalid"], out_ready, out["tlast"]),
+            AxiStream(s2mm["tdata"], s2mm["tkeep"], s2mm["tvalid"], s2mm_ready, s2mm["tlast"]),
+            width=width, count=len(status_inputs(n_sub)),
         )
     )  # fmt: skip
     dma_out = [ports[f"m_axis_s2mm_{name}"] for name in ("tdata", "tkeep", "tlast")]
@@ -228,15 +230,19 @@ def publisher_inputs(
             parts.append(follow(single, gathered[name]))
     parts.append(
         chunk_mux(
-            clk, rst, gathered["tdata"], gathered["tkeep"], gathered["tvalid"], grant,
-            gathered["tlast"], gathered["length"], out["tdata"], out["tkeep"], out["tvalid"],
-            out_ready, out["tlast"], width=width, scheduler=shape.scheduler,
+            clk, rst,
+            AxiStream(gathered["tdata"], gathered["tkeep"], gathered["tvalid"], grant,
+                      gathered["tlast"]),
+            gathered["length"],
+            AxiStream(out["tdata"], out["tkeep"], out["tvalid"], out_ready, out["tlast"]),
+            width=width, scheduler=shape.scheduler,
         )
     )  # fmt: skip
     parts += [index_bit(grant, i, sliced["tready"][i]) for i in range(n_pub)]
     return parts
 
 
+# One bit to every bit: shaped like the statechart's grant gate, which selects a vector.
 @block
 def spread_bit(bit: SignalLike, vector: SignalLike) -> Instances:
     """Drive every bit of `vector` with `bit`."""

@@ -4,6 +4,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from myhdl import always_comb, block, intbv
+
+from rfc.lib.types import Instances, SignalLike
+
 #: Bytes of a chunk header: u16 id, u16 flags, u32 length (little-endian).
 HEADER_BYTES = 8
 #: Flag bits of the header.
@@ -44,3 +48,27 @@ class BusGeometry:
 def header_word(ident: int, flags: int, length: int) -> int:
     """The 64-bit little-endian header as an integer (byte 0 in bits 7..0)."""
     return ident | (flags << 16) | (length << 32)
+
+
+@block
+def header_assembly(
+    stored: SignalLike, beat: SignalLike, data: SignalLike, word: SignalLike
+) -> Instances:
+    """`word`: the header bytes `stored` so far, with this beat's `data` in place `beat`.
+
+    A header of `HEADER_BYTES` spans ``8 * HEADER_BYTES / len(data)`` beats (at least one);
+    whoever reads a header (the demultiplexer, a subscriber's length tap) keeps `stored` itself.
+    """
+    bits = len(data)
+    beats = max(1, 8 * HEADER_BYTES // bits)
+
+    @always_comb
+    def assemble() -> None:
+        assembled = intbv(0)[8 * HEADER_BYTES :]
+        assembled[:] = stored
+        for index in range(beats):
+            if beat == index:
+                assembled[(index + 1) * bits : index * bits] = data
+        word.next = assembled
+
+    return assemble

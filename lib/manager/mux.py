@@ -20,6 +20,7 @@ from __future__ import annotations
 
 from myhdl import Signal, always_comb, always_seq, block, enum, intbv
 
+from rfc.lib.axi_stream import AxiStream
 from rfc.lib.manager.header import FLAG_END, FLAG_START, HEADER_BYTES, BusGeometry
 from rfc.lib.schedulers.hardware import scheduler_block
 from rfc.lib.schedulers.spec import AnySchedulerSpec, CompositionSpec
@@ -33,23 +34,13 @@ def is_preemptive(spec: AnySchedulerSpec) -> bool:
     return spec.algorithm.preemptive
 
 
-# Ports as parameters, not a bundle: MyHDL declares the signals a process reads in the
-# order of its block's parameters, and a bundle would reorder the generated VHDL.
 @block
 def chunk_mux(
     clk: SignalLike,
     rst: SignalLike,
-    s_tdata: SignalLike,
-    s_tkeep: SignalLike,
-    s_tvalid: SignalLike,
-    s_tready: SignalLike,
-    s_tlast: SignalLike,
+    s: AxiStream,
     s_length: SignalLike,
-    m_tdata: SignalLike,
-    m_tkeep: SignalLike,
-    m_tvalid: SignalLike,
-    m_tready: SignalLike,
-    m_tlast: SignalLike,
+    m: AxiStream,
     width: int,
     scheduler: AnySchedulerSpec,
 ) -> Instances:
@@ -58,21 +49,17 @@ def chunk_mux(
     Args:
         clk: Clock.
         rst: Synchronous reset, active high.
-        s_tdata: intbv[publishers*width] in: publisher i's data in bits [(i+1)*width, i*width).
-        s_tkeep: intbv[publishers*width/8] in, likewise.
-        s_tvalid: intbv[publishers] in: requests.
-        s_tready: intbv[publishers] out: the scheduler's grant.
-        s_tlast: intbv[publishers] in: message ends.
+        s: The publishers' streams in, publisher i's ``tdata`` in bits [(i+1)*width, i*width)
+            and its ``tkeep`` likewise; ``tvalid`` (requests), ``tready`` (the scheduler's
+            grant) and ``tlast`` (message ends) one bit per publisher.
         s_length: intbv[publishers*32] in: each publisher's frame length in bytes, valid
             whenever its `tvalid` is high and stable until its `tlast` beat.
-        m_tdata: intbv[width] out, to the DMA (S2MM).
-        m_tkeep: intbv[width/8] out.
-        m_tvalid: bool out.
-        m_tready: bool in.
-        m_tlast: bool out.
+        m: The stream out to the DMA (S2MM), `width` bits a beat.
         width: Bus width in bits (8, 32, 64).
         scheduler: The scheduler, one input per publisher (its `n` is the publisher count).
     """
+    s_tdata, s_tkeep, s_tvalid, s_tready, s_tlast = s.signals()
+    m_tdata, m_tkeep, m_tvalid, m_tready, m_tlast = m.signals()
     geometry = BusGeometry(width)
     lanes = geometry.lanes
     header_beats = geometry.header_beats
@@ -170,7 +157,6 @@ def chunk_mux(
         ready.next = state == t_state.PAYLOAD and owner_offered and space
         s_tready.next = grant
 
-    # head and tail take the same moves in this one process: a MyHDL process converts whole.
     @always_seq(clk.posedge, reset=rst)
     def sequence() -> None:
         # What enters the buffer this cycle, if anything, and whether the chunk ends on the
@@ -224,27 +210,14 @@ def chunk_mux(
             ending = True
             state.next = t_state.IDLE
 
-        # The buffer: the head leaves, the entering beat joins behind what stays (the same
-        # three fields move each time; a process converts whole, so each move is written out).
-        if leaving:
-            if count == 2:
-                head_data.next = tail_data
-                head_keep.next = tail_keep
-                head_last.next = tail_last or ending
-                if enter:
-                    tail_data.next = enter_data
-                    tail_keep.next = enter_keep
-                    tail_last.next = enter_last
-                else:
-                    count.next = 1
-            elif enter:
-                head_data.next = enter_data
-                head_keep.next = enter_keep
-                head_last.next = enter_last
-            else:
-                count.next = 0
-        elif enter:
-            if count == 0:
+        # The buffer: the head leaves and the tail moves up; the entering beat joins behind
+        # what stays, and a chunk's end with nothing entering marks the youngest beat held.
+        if leaving and count == 2:
+            head_data.next = tail_data
+            head_keep.next = tail_keep
+            head_last.next = tail_last or ending
+        if enter:
+            if count == 0 or (leaving and count == 1):
                 head_data.next = enter_data
                 head_keep.next = enter_keep
                 head_last.next = enter_last
@@ -252,7 +225,10 @@ def chunk_mux(
                 tail_data.next = enter_data
                 tail_keep.next = enter_keep
                 tail_last.next = enter_last
-            count.next = count + 1
+            if not leaving:
+                count.next = count + 1
+        elif leaving:
+            count.next = count - 1
         elif ending:
             if count == 2:
                 tail_last.next = True

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 from myhdl import Signal, always_comb, always_seq, block, enum, intbv
 
+from rfc.lib.axi_stream import AxiStream
 from rfc.lib.converters.ports import COUNTER_BITS
 from rfc.lib.manager.header import FLAG_END, FLAG_START, STATUS_ID, BusGeometry
 from rfc.lib.types import Instances, SignalLike
@@ -23,24 +24,14 @@ def status_length(counters: int) -> int:
     return 4 * counters
 
 
-# Ports as parameters, not a bundle: MyHDL declares the signals a process reads in the
-# order of its block's parameters, and a bundle would reorder the generated VHDL.
 @block
 def status_inserter(
     clk: SignalLike,
     rst: SignalLike,
     request: SignalLike,
     counters: SignalLike,
-    s_tdata: SignalLike,
-    s_tkeep: SignalLike,
-    s_tvalid: SignalLike,
-    s_tready: SignalLike,
-    s_tlast: SignalLike,
-    m_tdata: SignalLike,
-    m_tkeep: SignalLike,
-    m_tvalid: SignalLike,
-    m_tready: SignalLike,
-    m_tlast: SignalLike,
+    s: AxiStream,
+    m: AxiStream,
     width: int,
     count: int,
 ) -> Instances:
@@ -51,19 +42,13 @@ def status_inserter(
         rst: Synchronous reset, active high.
         request: bool in, high for one cycle per request.
         counters: intbv[32*count] in, counter i in bits [32*(i+1), 32*i); None when count is 0.
-        s_tdata: intbv[width] in, the publishers' chunks (from `chunk_mux`).
-        s_tkeep: intbv[width/8] in.
-        s_tvalid: bool in.
-        s_tready: bool out.
-        s_tlast: bool in.
-        m_tdata: intbv[width] out, to the DMA (S2MM).
-        m_tkeep: intbv[width/8] out.
-        m_tvalid: bool out.
-        m_tready: bool in.
-        m_tlast: bool out.
+        s: The publishers' chunks in (from `chunk_mux`), `width` bits a beat.
+        m: The stream out to the DMA (S2MM), `width` bits a beat.
         width: Bus width in bits (8, 32, 64).
         count: Number of counters (a multiple of 2, so that the chunk fills whole beats).
     """
+    s_tdata, s_tkeep, s_tvalid, s_tready, s_tlast = s.signals()
+    m_tdata, m_tkeep, m_tvalid, m_tready, m_tlast = m.signals()
     lanes = BusGeometry(width).lanes
     length = status_length(count)
     bits = 64 + COUNTER_BITS * count

@@ -8,6 +8,7 @@ import random
 import pytest
 from myhdl import ResetSignal, Signal, intbv
 
+from rfc.lib.axi_stream import AxiStream
 from rfc.lib.manager.demux import chunk_demux
 from rfc.runtime.protocol import Chunk, ChunkFlags, message_chunk
 from rfc.toolchain import convert_myhdl, run_cocotb
@@ -24,16 +25,10 @@ def demux_files(width, directory):
     instance = chunk_demux(
         Signal(bool(0)),
         ResetSignal(0, active=1, isasync=False),
-        vector(width),
-        vector(lanes),
-        Signal(bool(0)),
-        Signal(bool(0)),
-        Signal(bool(0)),
-        vector(width),
-        vector(lanes),
-        Signal(bool(0)),
-        vector(SUBSCRIBERS),
-        vector(SUBSCRIBERS),
+        AxiStream(vector(width), vector(lanes), Signal(bool(0)), Signal(bool(0)), Signal(bool(0))),
+        AxiStream(
+            vector(width), vector(lanes), vector(SUBSCRIBERS), vector(SUBSCRIBERS), Signal(bool(0))
+        ),
         vector(16),
         width=width,
         subscribers=SUBSCRIBERS,

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 from myhdl import ResetSignal, Signal, block, intbv
 
+from rfc.lib.axi_stream import AxiStream
 from rfc.lib.manager.mux import chunk_mux
 from rfc.lib.schedulers.model import model_of
 from rfc.lib.schedulers.spec import Algorithm, SchedulerSpec
@@ -45,17 +46,9 @@ def mux_files(spec, width, directory):
         return chunk_mux(
             clk,
             rst,
-            s_tdata,
-            s_tkeep,
-            s_tvalid,
-            s_tready,
-            s_tlast,
+            AxiStream(s_tdata, s_tkeep, s_tvalid, s_tready, s_tlast),
             s_length,
-            m_tdata,
-            m_tkeep,
-            m_tvalid,
-            m_tready,
-            m_tlast,
+            AxiStream(m_tdata, m_tkeep, m_tvalid, m_tready, m_tlast),
             width=width,
             scheduler=spec,
         )

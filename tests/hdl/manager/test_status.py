@@ -10,6 +10,7 @@ import struct
 import pytest
 from myhdl import ResetSignal, Signal, intbv
 
+from rfc.lib.axi_stream import AxiStream
 from rfc.lib.manager.status import status_inserter
 from rfc.runtime.protocol import HEADER, message_chunk
 from rfc.toolchain import convert_myhdl, run_cocotb
@@ -23,21 +24,16 @@ def inserter_files(width, directory):
     def vector(bits):
         return Signal(intbv(0)[bits:])
 
+    def stream():
+        return AxiStream(vector(width), vector(lanes), *(Signal(bool(0)) for _ in range(3)))
+
     instance = status_inserter(
         Signal(bool(0)),
         ResetSignal(0, active=1, isasync=False),
         Signal(bool(0)),
         vector(32 * COUNTERS),
-        vector(width),
-        vector(lanes),
-        Signal(bool(0)),
-        Signal(bool(0)),
-        Signal(bool(0)),
-        vector(width),
-        vector(lanes),
-        Signal(bool(0)),
-        Signal(bool(0)),
-        Signal(bool(0)),
+        stream(),
+        stream(),
         width=width,
         count=COUNTERS,
     )

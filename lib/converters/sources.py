@@ -2,14 +2,14 @@
 
 Record chunk ``rc`` puts, on bus lane ``j``, one byte known at compile time: a byte of a field
 input, of a length prefix, of the CDR header, or a zero (padding, excluded fields). So each
-lane gets a bus of just the bytes it ever carries and a table from ``rc`` to a position in it:
-a multiplexer as wide as the number of chunks, not as the message. Payload bytes work the same
+lane gets, per bit, a plane of what that bit is at each ``rc`` and selects it by ``rc``: eight
+multiplexers as wide as the number of chunks, not as the message. Payload bytes work the same
 way with the sub-streams' data inputs, indexed by stream and piece.
 """
 
 from __future__ import annotations
 
-from myhdl import ConcatSignal, Constant, Signal, always_comb, block, intbv
+from myhdl import ConcatSignal, Signal, always_comb, block, intbv
 
 from rfc.lib.converters.frame_length import accumulate
 from rfc.lib.converters.steps import Loop, Payload, Plan, SlotRole, Step
@@ -20,31 +20,43 @@ from rfc.lib.types import Instances, SignalLike
 CDR_HEADER = (0x00, 0x01, 0x00, 0x00)
 
 
-# Selects a byte by a table where `wiring.select_bit` selects a bit: another VHDL process.
 @block
-def lane_select(
-    bus: SignalLike, table: tuple[int, ...], index: SignalLike, out: SignalLike
-) -> Instances:
-    """Drive `out` with byte ``table[index]`` of `bus`."""
+def lane_bits(planes: tuple[SignalLike, ...], index: SignalLike, out: SignalLike) -> Instances:
+    """Drive bit b of `out` with bit `index` of ``planes[b]``.
+
+    One multiplexer per bit, as wide as a plane, selected by `index` itself: no table lookup
+    and no arithmetic on the index, so synthesis sees eight narrow multiplexers where a byte
+    picked at ``8 * table[index]`` of a byte bus is eight shifters as wide as the whole bus
+    (minutes and gigabytes of Yosys on a large message).
+    """
+    p0, p1, p2, p3, p4, p5, p6, p7 = planes
 
     @always_comb
     def select() -> None:
-        at = table[index]
-        for bit in range(8):
-            out.next[bit] = bus[8 * at + bit]
+        out.next[0] = p0[index]
+        out.next[1] = p1[index]
+        out.next[2] = p2[index]
+        out.next[3] = p3[index]
+        out.next[4] = p4[index]
+        out.next[5] = p5[index]
+        out.next[6] = p6[index]
+        out.next[7] = p7[index]
 
     return select
 
 
-def _byte(source: SignalLike, index: int) -> list[SignalLike]:
-    """Byte `index` of a signal as parts of a `ConcatSignal`, high first (a bool: 0 or 1).
+def _bits(source: SignalLike | int | None, index: int) -> list[SignalLike | intbv]:
+    """Bits 0 to 7 of byte `index` of a field, a constant or (None) the CDR header.
 
-    Parts are signals, slices and constants only: MyHDL converts a `ConcatSignal` nested in
-    another as its initial value, so every bus is built flat from such parts.
+    Each bit is a one-bit slice of the field's signal or a one-bit constant: MyHDL converts a
+    `ConcatSignal` nested in another as its initial value, so every plane is built flat.
     """
-    if len(source) == 1:
-        return [intbv(0)[7:], source]
-    return [source(8 * index + 8, 8 * index)]
+    if source is None or isinstance(source, int):
+        value = CDR_HEADER[index] if source is None else source >> (8 * index)
+        return [intbv((value >> bit) & 1)[1:] for bit in range(8)]
+    if len(source) == 1:  # a bool: 0 or 1
+        return [source, *(intbv(0)[1:] for _ in range(7))]
+    return [source(8 * index + bit) for bit in range(8)]
 
 
 @block
@@ -54,13 +66,14 @@ def record_sources(
     """Drive ``lanes[j]`` with the byte record chunk `rc` sends on lane j."""
     t = tables(plan)
     width = plan.width
-    entries: list[list[SignalLike]] = [[] for _ in range(width)]
-    table = [[0] * t.record_chunks for _ in range(width)]
-    zero = [intbv(0)[8:]]
-    header = [[intbv(value)[8:]] for value in CDR_HEADER]
+    zero = [intbv(0)[1:] for _ in range(8)]
+    # Per lane, per rc (up to rc's largest value: the chunks after the records send zeros),
+    # the bits that lane carries then.
+    chunk_bits = [[zero] * rc.max for _ in range(width)]
     blocks = []
     for pc, step in plan.records():
         for slot in step.slots:
+            value: SignalLike | int | None
             if slot.role is SlotRole.ENCAPSULATION:
                 value = None
             elif slot.role is SlotRole.LENGTH:
@@ -70,7 +83,7 @@ def record_sources(
                     # the uint32 a prefix carries: the count, plus the NUL of a CDR string
                     blocks.append(accumulate(ports[port], terminator, value))
                 elif terminator:
-                    value = Constant(intbv(terminator)[32:])  # an empty CDR string: its NUL
+                    value = terminator  # an empty CDR string: its NUL
                 else:
                     continue
             elif slot.port:
@@ -79,14 +92,10 @@ def record_sources(
                 continue
             for run in pieces(slot, t.base[pc], width):
                 for i in range(run.count):
-                    byte, lane = run.first + i, run.lane + i
-                    source = header[byte] if value is None else _byte(value, byte)
-                    table[lane][run.rc] = len(entries[lane]) + 1
-                    entries[lane].append(source)
+                    chunk_bits[run.lane + i][run.rc] = _bits(value, run.first + i)
     for lane in range(width):
-        if entries[lane]:  # a lane no record reaches stays undriven: it is never given
-            parts = [part for entry in reversed([zero, *entries[lane]]) for part in entry]
-            blocks.append(lane_select(ConcatSignal(*parts), tuple(table[lane]), rc, lanes[lane]))
+        if any(bits is not zero for bits in chunk_bits[lane]):  # else never given: undriven
+            blocks.append(lane_bits(_planes(chunk_bits[lane]), rc, lanes[lane]))
     return blocks
 
 
@@ -96,18 +105,6 @@ def _prefixed(step: Step) -> tuple[str | None, int]:
         return step.length_port, int(step.terminator)
     assert isinstance(step, Loop), "a length prefix announces a string or a sequence"
     return step.count_port, 0
-
-
-@block
-def lane_pick(bus: SignalLike, index: SignalLike, out: SignalLike) -> Instances:
-    """Drive `out` with byte `index` of `bus`."""
-
-    @always_comb
-    def pick() -> None:
-        for bit in range(8):
-            out.next[bit] = bus[8 * int(index) + bit]
-
-    return pick
 
 
 def payload_bases(plan: Plan) -> tuple[int, ...]:
@@ -132,15 +129,20 @@ def payload_sources(
     """
     t = tables(plan)
     width = plan.width
-    entries: list[list[SignalLike]] = [[intbv(0)[8:]] for _ in range(width)]
+    zero = [intbv(0)[1:] for _ in range(8)]
+    # Per lane, per piece (up to the index's largest value), the bits that lane carries then.
+    piece_bits = [[zero] * index.max for _ in range(width)]
+    bases = payload_bases(plan)
     for pc in t.streams:
         step = plan.steps[pc]
         assert isinstance(step, Payload)
         data = ports[f"{step.stream}_tdata"]
         for piece in range(t.pieces[pc]):
             for lane in range(width):
-                entries[lane] += _byte(data, piece * width + lane)
-    return [
-        lane_pick(ConcatSignal(*reversed(entries[lane])), index, lanes[lane])
-        for lane in range(width)
-    ]
+                piece_bits[lane][bases[pc] + piece] = _bits(data, piece * width + lane)
+    return [lane_bits(_planes(piece_bits[lane]), index, lanes[lane]) for lane in range(width)]
+
+
+def _planes(bits_by_index: list[list[SignalLike | intbv]]) -> tuple[SignalLike, ...]:
+    """Bit b of every entry, entry 0 lowest: the eight inputs of a `lane_bits`."""
+    return tuple(ConcatSignal(*reversed([bits[bit] for bits in bits_by_index])) for bit in range(8))

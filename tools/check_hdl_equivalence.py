@@ -200,6 +200,9 @@ def main() -> int:
     parser.add_argument("--base", default="main", help="the revision to compare with")
     parser.add_argument("--dump", nargs=2, metavar=("SPEC", "DIR"), help=argparse.SUPPRESS)
     parser.add_argument("--json", type=Path, help="also write the verdicts here")
+    parser.add_argument(
+        "--keep", action="store_true", help="keep the builds, netlists and Yosys logs (says where)"
+    )
     args = parser.parse_args()
     if args.dump:
         dump_vhdl(Path(args.dump[0]), Path(args.dump[1]))
@@ -222,7 +225,10 @@ def main() -> int:
             check=False,
             capture_output=True,
         )
-        shutil.rmtree(scratch, ignore_errors=True)
+        if args.keep:
+            print(f"kept in {scratch}")
+        else:
+            shutil.rmtree(scratch, ignore_errors=True)
     for v in verdicts:
         print(f"{'proved  ' if v.proved else 'UNPROVED'} {v.spec}: {v.file}: {v.detail}")
     unproved = [v for v in verdicts if not v.proved]

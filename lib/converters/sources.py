@@ -67,9 +67,8 @@ def record_sources(
     t = tables(plan)
     width = plan.width
     zero = [intbv(0)[1:] for _ in range(8)]
-    # Per lane, per rc (up to rc's largest value: the chunks after the records send zeros),
-    # the bits that lane carries then.
-    chunk_bits = [[zero] * rc.max for _ in range(width)]
+    # Per lane, per rc, the bits that lane carries then.
+    chunk_bits = [[zero] * t.record_chunks for _ in range(width)]
     blocks = []
     for pc, step in plan.records():
         for slot in step.slots:
@@ -95,7 +94,12 @@ def record_sources(
                     chunk_bits[run.lane + i][run.rc] = _bits(value, run.first + i)
     for lane in range(width):
         if any(bits is not zero for bits in chunk_bits[lane]):  # else never given: undriven
-            blocks.append(lane_bits(_planes(chunk_bits[lane]), rc, lanes[lane]))
+            sent = chunk_bits[lane]
+            # Every value rc's bits can hold has an input (an index out of a VHDL vector's
+            # range stops a simulation); beyond the records, where nothing is sent, the last
+            # chunk's bits, as a ROM's `others` gives, keep the multiplexer small.
+            planes = _planes(sent + [sent[-1]] * ((1 << len(rc)) - t.record_chunks))
+            blocks.append(lane_bits(planes, rc, lanes[lane]))
     return blocks
 
 
@@ -130,8 +134,8 @@ def payload_sources(
     t = tables(plan)
     width = plan.width
     zero = [intbv(0)[1:] for _ in range(8)]
-    # Per lane, per piece (up to the index's largest value), the bits that lane carries then.
-    piece_bits = [[zero] * index.max for _ in range(width)]
+    # Per lane, per value of the index's bits, the bits that lane carries then.
+    piece_bits = [[zero] * (1 << len(index)) for _ in range(width)]
     bases = payload_bases(plan)
     for pc in t.streams:
         step = plan.steps[pc]

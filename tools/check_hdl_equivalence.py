@@ -92,20 +92,11 @@ def base_checkout(revision: str, scratch: Path) -> Path:
 
 
 def synthesize(files: list[Path], top: str, workdir: Path) -> Path:
-    """`ghdl --synth` of `top` to a Verilog netlist file."""
-    workdir.mkdir(parents=True, exist_ok=True)
+    """`ghdl --synth` of `top` to a Verilog netlist file (rfc's own GHDL call)."""
+    from rfc.toolchain.ghdl import synthesize_verilog
+
     netlist = workdir / f"{top}.v"
-    result = subprocess.run(
-        ["ghdl", "--synth", "--std=08", "-fsynopsys", f"--workdir={workdir}", "--out=verilog"]
-        + [str(f) for f in files]
-        + ["-e", top],
-        capture_output=True,
-        text=True,
-        check=False,
-    )
-    if result.returncode != 0:
-        raise RuntimeError(f"ghdl --synth {top}: {result.stderr.strip()}")
-    netlist.write_text(result.stdout, encoding="utf-8")
+    netlist.write_text(synthesize_verilog(files, top, workdir), encoding="utf-8")
     return netlist
 
 
@@ -177,7 +168,7 @@ def compare(spec: str, before: Path, after: Path, scratch: Path) -> list[Verdict
             # The top level instantiates the others: synthesize each side with all its files.
             gold = synthesize([*packages["gold"], *_others(before, old), old], top, work / "gold")
             gate = synthesize([*packages["gate"], *_others(after, new), new], top, work / "gate")
-        except RuntimeError as error:
+        except RuntimeError as error:  # GhdlError: GHDL refused one side
             verdicts.append(Verdict(spec, name, False, str(error)[-400:]))
             continue
         proved, detail = prove(gold, gate, top, work)

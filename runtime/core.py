@@ -244,7 +244,7 @@ class Runtime:
         results = accelerator.fire()
         port_routes = self.plan.software_outputs[route.block]
         for routes, result, message_type in zip(
-            port_routes, results, accelerator.output_types, strict=True
+            port_routes, results, accelerator.block.output_types, strict=True
         ):
             if result is not None:
                 self._deliver(

@@ -24,7 +24,7 @@ from rfc.messages.layout_model import Layout, Middleware, layout_from_json
 from rfc.messages.limits import Limits, limits_from_json
 from rfc.runtime.messages import MessageObjects
 from rfc.runtime.shaping import Shaper
-from rfc.runtime.software import Function, SoftwareAccelerator
+from rfc.runtime.software import Function, SoftwareAccelerator, SoftwareBlock
 
 #: Version of the plan document this runtime reads.
 PLAN_FORMAT = 1
@@ -94,18 +94,6 @@ class LogicInput:
     block: str
     message: str
     layout: Layout
-
-
-@dataclass(frozen=True)
-class SoftwareBlock:
-    """A ROS-SW accelerator block: its ports and the function it runs (module file, name)."""
-
-    block: str
-    module: str
-    function: str
-    inputs: tuple[str, ...]
-    outputs: tuple[str, ...]
-    output_types: tuple[str, ...]
 
 
 # Alike in shape only with the topic records above: each kind of entry of the plan has one.
@@ -203,9 +191,7 @@ class RuntimePlan:
             RfcError: A function's module is missing, fails to import, or lacks the function.
         """
         return {
-            name: SoftwareAccelerator(
-                name, block.inputs, block.outputs, block.output_types, self.function_of(name)
-            )
+            name: SoftwareAccelerator(block, self.function_of(name))
             for name, block in self.software_blocks.items()
         }
 

@@ -16,6 +16,7 @@ as superseded.
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
+from dataclasses import dataclass
 from typing import Any
 
 from rfc.errors import RfcError
@@ -24,31 +25,39 @@ from rfc.user_code import running_user_code
 Function = Callable[..., Any]
 
 
-class SoftwareAccelerator:
-    """One ROS-SW accelerator block: its input slots and its function.
+@dataclass(frozen=True)
+class SoftwareBlock:
+    """A ROS-SW accelerator block as the plan names it: its ports and its function's place.
 
-    Args:
+    Attributes:
         name: The block's name.
+        module: The file of its function, relative to the plan.
+        function: The function's name in that file.
         inputs: Its input ports' names, in declaration order.
         outputs: Its output ports' names, in declaration order.
         output_types: The message type of each output port.
-        function: What it runs.
     """
 
-    def __init__(
-        self,
-        name: str,
-        inputs: tuple[str, ...],
-        outputs: tuple[str, ...],
-        output_types: tuple[str, ...],
-        function: Function,
-    ) -> None:
-        self.name = name
-        self.inputs = inputs
-        self.outputs = outputs
-        self.output_types = output_types
+    name: str
+    module: str
+    function: str
+    inputs: tuple[str, ...]
+    outputs: tuple[str, ...]
+    output_types: tuple[str, ...]
+
+
+class SoftwareAccelerator:
+    """One ROS-SW accelerator block at run time: its input slots and its loaded function.
+
+    Args:
+        block: The block as the plan names it.
+        function: What it runs (``block.function`` imported).
+    """
+
+    def __init__(self, block: SoftwareBlock, function: Function) -> None:
+        self.block = block
         self.function = function
-        self._slots: list[Any] = [None] * len(self.inputs)
+        self._slots: list[Any] = [None] * len(block.inputs)
         self.calls = 0
 
     def take(self, port: int, message: object) -> bool:
@@ -71,11 +80,11 @@ class SoftwareAccelerator:
         Raises:
             RfcError: The function raised, or returned something that does not fit its outputs.
         """
-        arguments, self._slots = self._slots, [None] * len(self.inputs)
+        arguments, self._slots = self._slots, [None] * len(self.block.inputs)
         self.calls += 1
         what = (
             f"ROS-SW function '{getattr(self.function, '__name__', '?')}' of accelerator "
-            f"'{self.name}' (call {self.calls})"
+            f"'{self.block.name}' (call {self.calls})"
         )
         try:
             with running_user_code(what):
@@ -84,38 +93,42 @@ class SoftwareAccelerator:
             raise
         except Exception as exc:  # the user's function failed: stop with its words
             raise RfcError(
-                f"ROS-SW accelerator '{self.name}' raised {type(exc).__name__}: {exc} "
+                f"ROS-SW accelerator '{self.block.name}' raised {type(exc).__name__}: {exc} "
                 f"(call {self.calls})"
             ) from None
         return self._check(self._per_port(result))
 
     def _per_port(self, result: Any) -> Sequence[Any]:
+        name, outputs = self.block.name, self.block.outputs
         if isinstance(result, dict):
-            unknown = sorted(set(result) - set(self.outputs))
+            unknown = sorted(set(result) - set(outputs))
             if unknown:
                 raise RfcError(
-                    f"ROS-SW accelerator '{self.name}' returned output '{unknown[0]}', but its "
-                    f"outputs are {', '.join(self.outputs)}"
+                    f"ROS-SW accelerator '{name}' returned output '{unknown[0]}', but its "
+                    f"outputs are {', '.join(outputs)}"
                 )
-            return [result.get(name) for name in self.outputs]
-        if len(self.outputs) == 1:
+            return [result.get(output) for output in outputs]
+        if len(outputs) == 1:
             return [result]
-        if not isinstance(result, tuple | list) or len(result) != len(self.outputs):
+        if not isinstance(result, tuple | list) or len(result) != len(outputs):
             raise RfcError(
-                f"ROS-SW accelerator '{self.name}' has {len(self.outputs)} outputs and must "
-                f"return a tuple of {len(self.outputs)} messages (None for no message), not "
+                f"ROS-SW accelerator '{name}' has {len(outputs)} outputs and must "
+                f"return a tuple of {len(outputs)} messages (None for no message), not "
                 f"{type(result).__name__}"
             )
         return list(result)
 
     def _check(self, messages: Sequence[Any]) -> list[object | None]:
-        for name, expected, message in zip(self.outputs, self.output_types, messages, strict=True):
+        block = self.block
+        for name, expected, message in zip(
+            block.outputs, block.output_types, messages, strict=True
+        ):
             if message is None:
                 continue
             got = getattr(message, "__msgtype__", type(message).__name__)
             if got != expected:
                 raise RfcError(
-                    f"ROS-SW accelerator '{self.name}' returned a {got} on output '{name}', "
+                    f"ROS-SW accelerator '{block.name}' returned a {got} on output '{name}', "
                     f"which carries {expected}"
                 )
         return list(messages)

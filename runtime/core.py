@@ -222,7 +222,7 @@ class Runtime:
         try:
             shaped = route.shaper.shape(data)
         except FrameError:
-            self.account.drop(route.publisher, "malformed")
+            self.account.drop(route.block, "malformed")
             return
         self.account.published[route.topic] += 1
         out.append(Published(route.topic, route.message, stamp, shaped))

@@ -31,12 +31,18 @@ PLAN_FORMAT = 1
 
 
 @dataclass(frozen=True)
-class ToTopic:
-    """Publish on a ROS topic (a declared publisher), shaped as its input port selects."""
+class TopicBlock:
+    """A declared subscriber or publisher: its block, its topic and the message type on it."""
 
-    publisher: str
+    block: str
     topic: str
     message: str
+
+
+@dataclass(frozen=True)
+class ToTopic(TopicBlock):
+    """Publish on a ROS topic (a declared publisher), shaped as its input port selects."""
+
     shaper: Shaper
 
 
@@ -68,22 +74,10 @@ Route = ToTopic | ToLogic | ToSoftware
 
 
 @dataclass(frozen=True)
-class TopicInput:
-    """A declared subscriber: the topic it takes and where its messages go."""
+class TopicInput(TopicBlock):
+    """A declared subscriber and where its messages go."""
 
-    block: str
-    topic: str
-    message: str
     routes: tuple[Route, ...]
-
-
-@dataclass(frozen=True)
-class TopicOutput:
-    """A declared publisher: a topic the system writes."""
-
-    block: str
-    topic: str
-    message: str
 
 
 @dataclass(frozen=True)
@@ -96,7 +90,6 @@ class LogicInput:
     layout: Layout
 
 
-# Alike in shape only with the topic records above: each kind of entry of the plan has one.
 @dataclass(frozen=True)
 class LogicFiles:
     """The build's logic, for the simulated transport: file list, top entity, bus width."""
@@ -161,7 +154,7 @@ class RuntimePlan:
             for i in document["inputs"]
         )
         self.outputs = tuple(
-            TopicOutput(o["block"], o["topic"], o["message"]) for o in document["outputs"]
+            TopicBlock(o["block"], o["topic"], o["message"]) for o in document["outputs"]
         )
         self.logic_outputs: dict[int, tuple[Route, ...]] = {
             p["id"]: _routes(p["routes"]) for p in document["publishers"]

@@ -20,7 +20,7 @@ from enum import StrEnum
 from rfc.errors import RfcError
 from rfc.messages.codec import FrameError, decode
 from rfc.runtime.account import Account
-from rfc.runtime.plan import Route, RuntimePlan, ToLogic, TopicInput, ToSoftware, ToTopic
+from rfc.runtime.plan import LogicInput, Route, RuntimePlan, TopicInput, ToSoftware, ToTopic
 from rfc.runtime.protocol import Chunk, ProtocolError, Reassembler, message_chunk
 from rfc.runtime.queues import Overflow
 from rfc.runtime.scheduling import PerSubscriberLRU, SharedFifo, SoftwareScheduler
@@ -91,7 +91,6 @@ class Runtime:
         self.account = Account()
         self.software = plan.software_accelerators()
         self._reassembler = Reassembler()
-        self._logic_layouts = {c.id: c.layout for c in plan.logic_inputs}
         self._inputs: dict[str, list[TopicInput]] = {}
         for topic_input in plan.inputs:
             self._inputs.setdefault(topic_input.topic, []).append(topic_input)
@@ -190,12 +189,12 @@ class Runtime:
         self, routes: Iterable[Route], data: bytes, stamp: int, now: int, out: list[Published]
     ) -> None:
         for route in routes:
-            if isinstance(route, ToLogic):
-                refused = self._refused_by_logic(route.subscriber, data)
+            if isinstance(route, LogicInput):
+                refused = self._refused_by_logic(route, data)
                 if refused is not None:
                     self.account.drop(route.block, refused)
                     continue
-                dropped = self.scheduler.push(route.subscriber, Queued(data, stamp, now))
+                dropped = self.scheduler.push(route.id, Queued(data, stamp, now))
                 if dropped is not None:
                     self.account.drop(self.plan.subscriber_names[dropped.subscriber], "overflow")
             elif isinstance(route, ToTopic):
@@ -203,7 +202,7 @@ class Runtime:
             else:
                 self._run_software(route, data, stamp, now, out)
 
-    def _refused_by_logic(self, subscriber: int, data: bytes) -> str | None:
+    def _refused_by_logic(self, subscriber: LogicInput, data: bytes) -> str | None:
         """Why the subscriber converter would drop this message, if it would.
 
         It drops what is not a message of its type and what holds a string or sequence longer
@@ -211,7 +210,7 @@ class Runtime:
         """
         if not self.screen:
             return None
-        layout = self._logic_layouts[subscriber]
+        layout = subscriber.layout
         try:
             values = decode(layout, data)
         except FrameError:

@@ -47,11 +47,20 @@ class ToTopic(TopicBlock):
 
 
 @dataclass(frozen=True)
-class ToLogic:
-    """Send to the logic as a PS→PL chunk of this subscriber id."""
+class LogicInput:
+    """A subscriber converter in the logic; as a route: send to it, as PS→PL chunks of its id.
 
-    subscriber: int
+    Attributes:
+        id: The ``id`` of the PS→PL chunks it takes.
+        block: Its block.
+        message: The message type it takes.
+        layout: The layout it accepts.
+    """
+
+    id: int
     block: str
+    message: str
+    layout: Layout
 
 
 @dataclass(frozen=True)
@@ -70,7 +79,7 @@ class ToSoftware:
         return f"{self.block}.{self.port_name}"
 
 
-Route = ToTopic | ToLogic | ToSoftware
+Route = ToTopic | LogicInput | ToSoftware
 
 
 @dataclass(frozen=True)
@@ -78,16 +87,6 @@ class TopicInput(TopicBlock):
     """A declared subscriber and where its messages go."""
 
     routes: tuple[Route, ...]
-
-
-@dataclass(frozen=True)
-class LogicInput:
-    """A subscriber converter in the logic: its id and the layout it accepts."""
-
-    id: int
-    block: str
-    message: str
-    layout: Layout
 
 
 @dataclass(frozen=True)
@@ -148,16 +147,17 @@ class RuntimePlan:
             for s in document["subscribers"]
         )
         self.subscriber_names = {s.id: s.block for s in self.logic_inputs}
+        subscribers = {s.id: s for s in self.logic_inputs}
         self.publisher_names = {p["id"]: p["block"] for p in document["publishers"]}
         self.inputs = tuple(
-            TopicInput(i["block"], i["topic"], i["message"], _routes(i["routes"]))
+            TopicInput(i["block"], i["topic"], i["message"], _routes(i["routes"], subscribers))
             for i in document["inputs"]
         )
         self.outputs = tuple(
             TopicBlock(o["block"], o["topic"], o["message"]) for o in document["outputs"]
         )
         self.logic_outputs: dict[int, tuple[Route, ...]] = {
-            p["id"]: _routes(p["routes"]) for p in document["publishers"]
+            p["id"]: _routes(p["routes"], subscribers) for p in document["publishers"]
         }
         self.software_blocks = {
             s["block"]: SoftwareBlock(
@@ -171,7 +171,7 @@ class RuntimePlan:
             for s in document["software"]
         }
         self.software_outputs: dict[str, tuple[tuple[Route, ...], ...]] = {
-            s["block"]: tuple(_routes(o["routes"]) for o in s["outputs"])
+            s["block"]: tuple(_routes(o["routes"], subscribers) for o in s["outputs"])
             for s in document["software"]
         }
         logic = document.get("logic")
@@ -247,14 +247,17 @@ def function_in_file(path: Path, name: str, block: str) -> Function:
     return function
 
 
-def _routes(documents: list[dict[str, Any]]) -> tuple[Route, ...]:
-    return tuple(_route(d) for d in documents)
+def _routes(
+    documents: list[dict[str, Any]], subscribers: dict[int, LogicInput]
+) -> tuple[Route, ...]:
+    """The routes of `documents`; one to the logic is its converter among `subscribers` (by id)."""
+    return tuple(_route(d, subscribers) for d in documents)
 
 
-def _route(document: dict[str, Any]) -> Route:
+def _route(document: dict[str, Any], subscribers: dict[int, LogicInput]) -> Route:
     kind = document["to"]
     if kind == "logic":
-        return ToLogic(document["subscriber"], document["block"])
+        return subscribers[document["subscriber"]]
     shaper = Shaper(layout_from_json(document["layout"]))
     if kind == "topic":
         return ToTopic(document["publisher"], document["topic"], document["message"], shaper)

@@ -10,6 +10,7 @@ and the Python form of one system print the same text.
 from __future__ import annotations
 
 import os
+from dataclasses import asdict
 from pathlib import Path
 from typing import Any
 
@@ -151,22 +152,9 @@ class _Writer:
             ],
             "scheduler": {
                 "algorithm": infrastructure.scheduler.algorithm,
-                "inputs": [
-                    Flow(
-                        index=i.index,
-                        publisher=i.publisher,
-                        transfer_beats=i.transfer_beats,
-                        transfer_exact=i.transfer_exact,
-                        period=i.period,
-                        deadline=i.deadline,
-                    )
-                    for i in infrastructure.scheduler.inputs
-                ],
+                "inputs": [Flow(asdict(i)) for i in infrastructure.scheduler.inputs],
             },
-            "buffers": [
-                Flow(publisher=b.publisher, field=b.field, max_bytes=b.max_bytes)
-                for b in infrastructure.buffers
-            ],
+            "buffers": [Flow(asdict(b)) for b in infrastructure.buffers],
         }
         if infrastructure.software:
             document["software"] = list(infrastructure.software)

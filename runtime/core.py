@@ -29,6 +29,7 @@ from rfc.runtime.scheduling import PerSubscriberLRU, SharedFifo, SoftwareSchedul
 DEFAULT_DEPTH = 10
 
 
+# An enum then a record, like rfc.ir's DmaDirection in shape only: callback queues.
 class QueuePolicy(StrEnum):
     """How the processor queues messages for the PS→PL DMA (paper Fig. 4)."""
 

@@ -19,6 +19,7 @@ from rfc.runtime.dma_device import DmaChannels, FileDma, NoLogic
 from rfc.runtime.plan import RuntimePlan
 
 
+# An enum then a record, like the layout's FieldKind, the converters' SlotRole, in shape only.
 class Device(StrEnum):
     """Which transport the node uses."""
 

@@ -40,6 +40,7 @@ def t_quantile_95(freedom: int) -> float:
     )
 
 
+# Fields and values derived from them, like the loopback's FrameTiming in shape only: statistics.
 @dataclass(frozen=True)
 class Summary:
     """Mean of a metric over replicates with the half-width of its 95 % confidence interval.

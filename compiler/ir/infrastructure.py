@@ -30,6 +30,7 @@ from rfc.messages.layout import Layout
 CHUNK_HEADER_BYTES = 8
 
 
+# An enum then a record, like rfc.runtime.core's QueuePolicy in shape only: DMA streams.
 class DmaDirection(StrEnum):
     """The two AXI-Stream channels between the processor (PS) and the logic (PL)."""
 
@@ -94,7 +95,7 @@ class Converter:
         return bool(self.length_fields)
 
 
-# Four fields, like rfc.toolchain's VhdlEntity in shape only.
+# Like VhdlEntity, LoopbackReport, placement's CrossingConverter in shape only: a DMA stream.
 @dataclass(frozen=True)
 class DmaChannel:
     """One DMA channel and the converters on its end, indexed by chunk id."""

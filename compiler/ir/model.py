@@ -217,6 +217,7 @@ class Endpoint:
 
 # Shares Port's include/exclude/spots tail: a port's patterns say what it needs, a connection's
 # what it carries (check-connections reconciles the two).
+# Its include/exclude are a Port's patterns too: one record for both would change every front-end.
 @dataclass(frozen=True)
 class Connection(_Spotted):
     """Messages flowing from a source port to a destination port.

@@ -68,6 +68,7 @@ CDR_HEADER_SIZE = 4
 LENGTH_PREFIX_SIZE = 4
 
 
+# An enum then a record, like the converters' SlotRole, the node's Device, in shape only.
 class FieldKind(StrEnum):
     """How a leaf field is serialized."""
 

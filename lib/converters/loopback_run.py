@@ -64,6 +64,7 @@ class LoopbackResult:
     publisher_cycles: int
 
 
+# Like rfc.ir's DmaChannel and rfc.toolchain's VhdlEntity in shape only: a run's results.
 @dataclass(frozen=True)
 class LoopbackReport:
     """All messages of a type through the loopback (its JSON: docs/architecture.md)."""
@@ -227,6 +228,7 @@ def _lengths(layout: Layout, values: Mapping[str, Any], prefix: str) -> Iterator
             yield path, len(value)
 
 
+# Fields and values derived from them, like rfc.dse.metrics' Summary in shape only: cycle marks.
 @dataclass(frozen=True)
 class FrameTiming:
     """When one frame passed the loopback's points (cycles), and its beats on each bus.

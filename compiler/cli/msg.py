@@ -14,6 +14,7 @@ from rich.console import Console
 from rich.table import Table
 
 from rfc.cli.notes import note_skipped, note_skipped_topics
+from rfc.cli.options import JsonOption
 from rfc.errors import RfcError
 from rfc.files.directory import kept_in
 from rfc.lib.converters.loopback_run import LoopbackReport, loopback
@@ -55,7 +56,7 @@ def show(
         list[str] | None, typer.Option(help="Select only these field paths (wildcards: *).")
     ] = None,
     exclude: Annotated[list[str] | None, typer.Option(help="Drop these field paths.")] = None,
-    as_json: Annotated[bool, typer.Option("--json", help="Print one JSON document.")] = False,
+    as_json: JsonOption = False,
 ) -> None:
     """Show the flattened layout of a message: leaf fields, widths, byte offsets."""
     for path in bag or ():
@@ -198,7 +199,7 @@ def loopback_command(
             "their VHDL: what synthesis makes of them.",
         ),
     ] = False,
-    as_json: Annotated[bool, typer.Option("--json", help="Print one JSON document.")] = False,
+    as_json: JsonOption = False,
 ) -> None:
     """Round-trip a bag's messages through the generated subscriber and publisher.
 

@@ -38,6 +38,7 @@ if TYPE_CHECKING:
     from rfc.sim.hardware import SimulationTop
 
 
+# Two-valued choices of rfc sim's options, like rfc.lib.converters.ports' enums in shape only.
 class Backend(StrEnum):
     """Which simulator runs the logic."""
 

@@ -129,6 +129,7 @@ _CPP_KEYWORDS = frozenset(
 )
 
 
+# A few fields and a property, like rfc.lib.converters.frame_length's records in shape only.
 @dataclass(frozen=True)
 class CField:
     """One scalar of a struct, in declaration order.

@@ -123,6 +123,7 @@ def simulate_with_myhdl(
 class _Processor:
     """The processor side of the testbench, one rising edge at a time."""
 
+    # Keeps its arguments as a constructor does: alike in shape only with runtime.software's.
     def __init__(
         self,
         ports: dict[str, Any],

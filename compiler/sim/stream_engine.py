@@ -187,6 +187,7 @@ class EngineReplay:
         busy: The logic's ``busy`` bits, or None when its top level has none.
     """
 
+    # Keeps its arguments and the replay's state: assignments alike in shape only with others.
     def __init__(
         self,
         engine: StreamEngine,

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import json
 import sys
-from enum import StrEnum
 from functools import partial
 from pathlib import Path
 from typing import Annotated, Any
@@ -14,7 +13,7 @@ from rich.console import Console
 from rich.table import Table
 
 from rfc.cli.notes import note_skipped, note_skipped_topics
-from rfc.cli.options import JsonOption
+from rfc.cli.options import JsonOption, Simulator
 from rfc.errors import RfcError
 from rfc.files.directory import kept_in
 from rfc.lib.converters.loopback_run import LoopbackReport, loopback
@@ -145,13 +144,6 @@ def _bus_width(value: int) -> int:
     return value
 
 
-class LoopbackSimulator(StrEnum):
-    """Which simulator runs a loopback."""
-
-    GHDL = "ghdl"
-    VERILATOR = "verilator"
-
-
 @msg_app.command("loopback")
 def loopback_command(
     type_name: Annotated[str, typer.Argument(help="Message type, e.g. nav_msgs/msg/Odometry.")],
@@ -184,13 +176,13 @@ def loopback_command(
         typer.Option(help="These fields do not; they come out at their defaults."),
     ] = None,
     simulator: Annotated[
-        LoopbackSimulator,
+        Simulator,
         typer.Option(
             "--simulator",
             help="GHDL (the VHDL) or Verilator (the Verilog, compiled once per converter pair "
             "and bus width, then cached).",
         ),
-    ] = LoopbackSimulator.GHDL,
+    ] = Simulator.GHDL,
     netlist: Annotated[
         bool,
         typer.Option(
@@ -206,7 +198,7 @@ def loopback_command(
     Exit status 1 when any message does not come out as rosbags serializes it (with the
     fields left out by --include/--exclude at their defaults).
     """
-    if netlist and simulator is not LoopbackSimulator.GHDL:
+    if netlist and simulator is not Simulator.GHDL:
         raise typer.BadParameter("--netlist simulates VHDL netlists: use --simulator ghdl")
     if not bag.exists():
         raise RfcError(f"bag '{bag}' does not exist", hint="give the path of a .bag, .mcap or .db3")

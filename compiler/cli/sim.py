@@ -39,7 +39,6 @@ if TYPE_CHECKING:
     from rfc.sim.hardware import SimulationTop
 
 
-# A two-valued choice, like rfc.lib.converters.ports' enums in shape only.
 class Backend(StrEnum):
     """Which simulator runs the logic."""
 

@@ -22,6 +22,7 @@ J = TypeVar("J")
 R = TypeVar("R")
 
 
+# Two names and a __str__, like rfc.lower.system.top.Terminal in shape only: a job, not a port.
 @dataclass(frozen=True)
 class Failure:
     """A job that raised: which one (its parameters, as the user gave them) and the error."""

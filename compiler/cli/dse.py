@@ -20,6 +20,7 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
+from rfc.cli.options import JsonOption
 from rfc.cli.progress import counting_bar
 from rfc.errors import RfcError
 
@@ -100,7 +101,7 @@ def dse(
         Path | None,
         typer.Option("--output", "-o", metavar="DIR", help="Where results go (sweep: dse/)."),
     ] = None,
-    as_json: Annotated[bool, typer.Option("--json", help="Print one JSON document.")] = False,
+    as_json: JsonOption = False,
     verify_hdl: Annotated[
         bool,
         typer.Option(

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import json
 import sys
-from enum import StrEnum
 from functools import partial
 from pathlib import Path
 from typing import Annotated, Any
@@ -14,6 +13,7 @@ from rich.console import Console
 from rich.table import Table
 
 from rfc.cli.notes import note_skipped, note_skipped_topics
+from rfc.cli.options import JsonOption, Simulator
 from rfc.errors import RfcError
 from rfc.files.directory import kept_in
 from rfc.lib.converters.loopback_run import LoopbackReport, loopback
@@ -55,7 +55,7 @@ def show(
         list[str] | None, typer.Option(help="Select only these field paths (wildcards: *).")
     ] = None,
     exclude: Annotated[list[str] | None, typer.Option(help="Drop these field paths.")] = None,
-    as_json: Annotated[bool, typer.Option("--json", help="Print one JSON document.")] = False,
+    as_json: JsonOption = False,
 ) -> None:
     """Show the flattened layout of a message: leaf fields, widths, byte offsets."""
     for path in bag or ():
@@ -144,13 +144,6 @@ def _bus_width(value: int) -> int:
     return value
 
 
-class LoopbackSimulator(StrEnum):
-    """Which simulator runs a loopback."""
-
-    GHDL = "ghdl"
-    VERILATOR = "verilator"
-
-
 @msg_app.command("loopback")
 def loopback_command(
     type_name: Annotated[str, typer.Argument(help="Message type, e.g. nav_msgs/msg/Odometry.")],
@@ -183,13 +176,13 @@ def loopback_command(
         typer.Option(help="These fields do not; they come out at their defaults."),
     ] = None,
     simulator: Annotated[
-        LoopbackSimulator,
+        Simulator,
         typer.Option(
             "--simulator",
             help="GHDL (the VHDL) or Verilator (the Verilog, compiled once per converter pair "
             "and bus width, then cached).",
         ),
-    ] = LoopbackSimulator.GHDL,
+    ] = Simulator.GHDL,
     netlist: Annotated[
         bool,
         typer.Option(
@@ -198,14 +191,14 @@ def loopback_command(
             "their VHDL: what synthesis makes of them.",
         ),
     ] = False,
-    as_json: Annotated[bool, typer.Option("--json", help="Print one JSON document.")] = False,
+    as_json: JsonOption = False,
 ) -> None:
     """Round-trip a bag's messages through the generated subscriber and publisher.
 
     Exit status 1 when any message does not come out as rosbags serializes it (with the
     fields left out by --include/--exclude at their defaults).
     """
-    if netlist and simulator is not LoopbackSimulator.GHDL:
+    if netlist and simulator is not Simulator.GHDL:
         raise typer.BadParameter("--netlist simulates VHDL netlists: use --simulator ghdl")
     if not bag.exists():
         raise RfcError(f"bag '{bag}' does not exist", hint="give the path of a .bag, .mcap or .db3")

@@ -11,6 +11,7 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
+from rfc.cli.options import JsonOption
 from rfc.cli.progress import run_counted
 from rfc.errors import RfcError
 from rfc.files.directory import replace_directory
@@ -67,7 +68,7 @@ def synth(
     no_cache: Annotated[
         bool, typer.Option("--no-cache", help="Synthesize even when a cached result exists.")
     ] = False,
-    as_json: Annotated[bool, typer.Option("--json", help="Print one JSON document.")] = False,
+    as_json: JsonOption = False,
     jobs: Annotated[
         int,
         typer.Option(

@@ -24,6 +24,7 @@ from rich.console import Console
 from rich.table import Table
 
 from rfc.cli.notes import note_skipped_topics
+from rfc.cli.options import Simulator
 from rfc.cli.progress import counting_bar
 from rfc.errors import RfcError, did_you_mean
 from rfc.runtime.core import DEFAULT_DEPTH, QueuePolicy
@@ -45,15 +46,6 @@ class Backend(StrEnum):
     """The VHDL of the whole logic in GHDL, the runtime in cocotb (any system)."""
     MYHDL = "myhdl"
     """MyHDL's simulator, in process (logic whose top provider gives a MyHDL design)."""
-
-
-class Simulator(StrEnum):
-    """Which HDL simulator runs the logic with ``--backend ghdl``."""
-
-    GHDL = "ghdl"
-    """The VHDL in GHDL (any logic)."""
-    VERILATOR = "verilator"
-    """The Verilog in Verilator (logic without VHDL accelerators); about 10x faster."""
 
 
 sim_app = typer.Typer()

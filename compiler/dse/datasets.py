@@ -87,6 +87,7 @@ def dataset(name: str) -> Dataset:
         ) from None
 
 
+# int[R, N] arrays sized by their shape, like lib's SchedulerTree: a draw of traffic, no tree.
 @dataclass(frozen=True)
 class Traffic:
     """Timing of N publishers on R replicates: int[R, N] each.

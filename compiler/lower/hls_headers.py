@@ -10,7 +10,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping
 
 from rfc.errors import RfcError
-from rfc.hls.c_types import hls_header
+from rfc.hls.c_types import hls_header, message_structs
 from rfc.hls.signature import ArgumentKind, read_top_function
 from rfc.ir.model import AcceleratorKind, AcceleratorType, Block, BlockKind, Design, Direction
 from rfc.lib.converters.ports import Port
@@ -31,7 +31,8 @@ def hls_headers(design: Design, options: BuildOptions) -> Iterable[Artifact]:
         if block is None:
             continue
         signatures, directions = port_signatures(design, block)
-        text = hls_header(accelerator.name, signatures, directions, accelerator.top)
+        structs = message_structs(signatures, directions)
+        text = hls_header(accelerator.name, structs, accelerator.top)
         yield Artifact(f"hls/{accelerator.name}_messages.h", "HLS message header", text)
 
 

@@ -16,7 +16,7 @@ from dataclasses import replace
 from enum import StrEnum
 
 from rfc.errors import RfcError, did_you_mean
-from rfc.hls.c_types import hls_header, hls_stub
+from rfc.hls.c_types import hls_stub, message_structs
 from rfc.hls.ports import logic_refusal
 from rfc.ir.model import AcceleratorType, Block, Design, Direction
 from rfc.ir.model import Port as ModelPort
@@ -254,7 +254,7 @@ def _hls(design: Design, accelerator: AcceleratorType, block: Block) -> str:
     """The top function to fill in, on the message structs of the header rfc generates."""
     signatures, directions = port_signatures(design, block)
     name, top = accelerator.name, _function_name(accelerator)
-    hls_header(name, signatures, directions, top)  # refuses what no struct can carry
+    structs = message_structs(signatures, directions)  # refuses what no struct can carry
     refusals = [
         line
         for port, pins in signatures.items()
@@ -265,7 +265,7 @@ def _hls(design: Design, accelerator: AcceleratorType, block: Block) -> str:
         f"// {name}: an HLS accelerator (skeleton written by rfc stub). rfc build writes\n"
         f"// {name}_messages.h into hls/, and rfc sim compiles against it (C simulation).\n"
         + "".join(refusals)
-        + hls_stub(name, signatures, directions, top)
+        + hls_stub(name, structs, top)
     )
 
 

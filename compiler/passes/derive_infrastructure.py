@@ -194,6 +194,7 @@ def _scheduler_input(converter: Converter, block: Block | None) -> SchedulerInpu
     if block is not None:  # a crossing publisher has no timing of its own
         with located(block.at("deadline" if block.deadline is not None else "period")):
             check_timing(beats, converter.deadline or beats + DEFAULT_IDLE)
+    # Keyword arguments, like cocotb_sim's call of the cocotb runner in shape only.
     return SchedulerInput(
         index=converter.id,
         publisher=converter.block,

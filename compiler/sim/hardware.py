@@ -133,11 +133,7 @@ def simulate_with_ghdl(
         queues: The processor's callback queues.
         screen: Whether the processor refuses malformed messages itself (else the logic's
             subscribers drop them; the account reads their counts, ``logic:<reason>``).
-        drain_cycles: Cycles of silence after which the system is idle.
-        stall_cycles: Cycles without a completed transfer, while work is pending, after which
-            the logic counts as stalled (`rfc.runtime.stall`).
-        seed: Seed of the random idle and backpressure.
-        progress: Called now and then with the number of messages offered so far.
+        drain_cycles, stall_cycles, seed, progress: The replay settings (`rfc.sim`).
         simulator: ``ghdl`` (the VHDL) or ``verilator`` (the top's ``verilog`` files).
         notice: Told in one line which GHDL back-end runs the logic, and whether it compiles
             the logic or reuses what an earlier run compiled.

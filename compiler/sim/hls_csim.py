@@ -99,7 +99,7 @@ def attach_c_simulations(design: Design, cache: Path | None = None) -> Design:
             layouts = {p.name: p.layout for p in block.ports if p.layout is not None}
             top = accelerator.top or accelerator.name
             structs = message_structs(signatures, directions)
-            header = hls_header(accelerator.name, signatures, directions, top)
+            header = hls_header(accelerator.name, structs, top)
             function = CSimulation.build(accelerator, structs, header, layouts, types, cache)
             accelerator = replace(accelerator, reference_function=function)
         accelerators.append(accelerator)

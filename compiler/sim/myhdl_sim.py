@@ -60,12 +60,8 @@ def simulate_with_myhdl(
         runtime: The processor side.
         messages: Input messages in time order, on the spec's topics.
         clock_mhz: The logic's clock.
-        drain_cycles: Quiet cycles after which the system is idle.
-        stall_cycles: The stall watchdog's base window, and the cap of the busy bits.
-        seed: Seed of the random idle and backpressure.
-        progress: Called with the number of messages offered so far.
         busy: The blocks the logic's ``busy`` port watches (none: it has no such port).
-        warnings: Receives what the replay gave up waiting for (`rfc.sim.busy`).
+        drain_cycles, stall_cycles, seed, progress, warnings: The replay settings (`rfc.sim`).
 
     Raises:
         StallError: The logic stalled (`rfc.runtime.stall`).
@@ -123,6 +119,7 @@ def simulate_with_myhdl(
 class _Processor:
     """The processor side of the testbench, one rising edge at a time."""
 
+    # Keeps its arguments as a constructor does: alike in shape only with runtime.software's.
     def __init__(
         self,
         ports: dict[str, Any],

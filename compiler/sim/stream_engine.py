@@ -182,11 +182,11 @@ class EngineReplay:
         runtime: The processor side.
         clock_mhz: The logic's clock.
         lanes: Bytes per beat of the DMA streams.
-        drain_cycles: Quiet cycles after which the system is idle.
-        stall_cycles: The stall watchdog's base window.
+        drain_cycles, stall_cycles: The replay settings (`rfc.sim`).
         busy: The logic's ``busy`` bits, or None when its top level has none.
     """
 
+    # Keeps its arguments and the replay's state: assignments alike in shape only with others.
     def __init__(
         self,
         engine: StreamEngine,
@@ -361,11 +361,7 @@ def simulate_with_engine(
         messages: Input messages in time order, on the spec's topics.
         top: The logic's top level with its ``verilog`` files in compile order.
         clock_mhz: The logic's clock (message arrivals convert to its cycles).
-        drain_cycles: Cycles of silence after which the system is idle.
-        stall_cycles: The stall watchdog's base window (`rfc.runtime.stall`).
-        seed: Seed of the idle/backpressure pattern.
-        progress: Called now and then with the number of messages offered so far.
-        warnings: Receives what the replay gave up waiting for (`rfc.sim.busy`).
+        drain_cycles, stall_cycles, seed, progress, warnings: The replay settings (`rfc.sim`).
 
     Returns:
         Everything published, in order.

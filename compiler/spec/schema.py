@@ -82,6 +82,7 @@ PUBLISHER_TYPE = "accelerator>ROS"
 BUS_WIDTHS = (8, 32, 64)
 _DURATION = "clock cycles (an integer) or a duration with a unit: '10 us', '1.5 ms'"
 
+# The sections below are rows of one table: alike in shape, each with keys of its own.
 SCHEDULER = Section(
     "scheduler",
     "The scheduler sharing the PL→PS DMA channel among the publishers.",

@@ -27,6 +27,7 @@ from cocotb_tools.runner import Runner, get_runner
 from rfc.toolchain.cache import cache_root
 from rfc.toolchain.convert import canonical_lines
 from rfc.toolchain.ghdl import STANDARD, Backend
+from rfc.toolchain.ghdl import _vhdl as vhdl_files  # the files GHDL analyzes, as it picks them
 from rfc.toolchain.verilator import (
     OPTIONS,
     model_cache,
@@ -78,7 +79,7 @@ def compiled_logic(sources: Sequence[Path], toplevel: str, backend: Backend) -> 
     digest = hashlib.sha256()
     for part in (backend.name, backend.version, toplevel.lower(), " ".join(_GHDL_OPTIONS)):
         digest.update(part.encode() + b"\n")
-    for path in _vhdl_sources(sources):
+    for path in vhdl_files(sources):
         digest.update(path.name.encode() + b"\n")
         text = _SENSITIVITY.sub(_sorted_sensitivity, path.read_text())
         for line in canonical_lines(text):
@@ -105,7 +106,7 @@ def compile_logic(logic: CompiledLogic, sources: Sequence[Path]) -> None:
         with ghdl_environment(logic.backend):
             try:
                 runner.build(
-                    sources=_vhdl_sources(sources),
+                    sources=vhdl_files(sources),
                     hdl_toplevel=logic.toplevel,
                     build_dir=partial,
                     build_args=list(_GHDL_OPTIONS),
@@ -137,10 +138,6 @@ def ghdl_environment(backend: Backend) -> Iterator[None]:
                 os.environ[key] = before[key]
             else:
                 del os.environ[key]
-
-
-def _vhdl_sources(sources: Sequence[Path]) -> list[Path]:
-    return [Path(s).resolve() for s in sources if Path(s).suffix in (".vhd", ".vhdl")]
 
 
 def run_cocotb(
@@ -185,7 +182,7 @@ def run_cocotb(
     library = build_dir
     if compiled is None:
         runner.build(
-            sources=_vhdl_sources(sources),
+            sources=vhdl_files(sources),
             hdl_toplevel=toplevel,
             build_dir=build_dir,
             build_args=list(_GHDL_OPTIONS),

@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 
+# Plain records of answers: alike in shape only with other records of rfc (steps, plan).
 @dataclass(frozen=True)
 class ProjectAnswers:
     """The project's settings, spelled as the YAML form spells them."""

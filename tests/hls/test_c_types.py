@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 
 from rfc.errors import RfcError
-from rfc.hls.c_types import hls_header, hls_stub, message_struct
+from rfc.hls.c_types import hls_header, hls_stub, message_struct, message_structs
 from rfc.ir.model import Direction
 from rfc.lib.converters.plan import plan
 from rfc.lib.converters.ports import Side, accelerator_signature
@@ -61,9 +61,9 @@ def test_the_header_and_the_stub_compile(tmp_path, case):
         "a": signature(types, message, "a", False, include),
         "b": signature(types, message, "b", True, include),
     }
-    directions = {"a": Direction.IN, "b": Direction.OUT}
-    header = hls_header("Acc", ports, directions)
-    stub = hls_stub("Acc", ports, directions)
+    structs = message_structs(ports, {"a": Direction.IN, "b": Direction.OUT})
+    header = hls_header("Acc", structs)
+    stub = hls_stub("Acc", structs)
     result = compiles(tmp_path, "Acc", header, stub)
     assert result.returncode == 0, result.stderr + header
 
@@ -74,7 +74,8 @@ def test_fields_become_nested_structs_c_arrays_and_streams_with_their_length():
         "poly": signature(types, "geometry_msgs/msg/PolygonStamped", "poly", False),
         "tri": signature(types, "shape_msgs/msg/MeshTriangle", "tri", True),
     }
-    header = hls_header("Shapes", ports, {"poly": Direction.IN, "tri": Direction.OUT})
+    structs = message_structs(ports, {"poly": Direction.IN, "tri": Direction.OUT})
+    header = hls_header("Shapes", structs)
     assert "struct poly_header_t {\n    poly_header_stamp_t stamp;\n" in header
     assert "    uint32_t frame_id_length;  // string\n" in header
     assert "struct poly_polygon_t {\n    uint32_t points_length;" in header
@@ -89,7 +90,7 @@ def test_fields_become_nested_structs_c_arrays_and_streams_with_their_length():
 def test_the_stub_comments_every_field_with_its_ros_type():
     types = message_types("ros2")
     ports = {"rgb": signature(types, "sensor_msgs/msg/Image", "rgb", False, ("height", "data"))}
-    stub = hls_stub("Gray", ports, {"rgb": Direction.IN})
+    stub = hls_stub("Gray", message_structs(ports, {"rgb": Direction.IN}))
     assert "//   rgb.height: uint32 (height)" in stub
     assert "//   rgb_data: read rgb.data_length elements of uint8_t (data: uint8[])" in stub
     assert "#pragma HLS INTERFACE mode=ap_fifo port=rgb_data" in stub

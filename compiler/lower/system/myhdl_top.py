@@ -16,6 +16,7 @@ from typing import Any
 from myhdl import ConcatSignal, ResetSignal, Signal, always_comb, block, intbv
 
 from rfc.lib.converters.ports import Direction
+from rfc.lib.converters.wiring import follow
 from rfc.lower.netlist import Net, Netlist
 from rfc.lower.system.top import RESET
 
@@ -51,15 +52,6 @@ def _signal(bits: int, wire: bool, name: str = "") -> Any:
     if name == RESET:
         return ResetSignal(0, active=1, isasync=False)
     return Signal(bool(0)) if wire else Signal(intbv(0)[bits:])
-
-
-@block
-def _copy(target: Any, source: Any) -> Any:
-    @always_comb
-    def copy() -> None:
-        target.next = source
-
-    return copy
 
 
 @block
@@ -121,7 +113,7 @@ class _Wiring:
                 self.parts[net.text] = _signal(net.bits, net.wire)
             whole = [self.parts[n.text] for n in nets]
             joined = ConcatSignal(*whole) if len(whole) > 1 else whole[0]
-            self.processes.append((_copy, {"target": self.signals[name], "source": joined}))
+            self.processes.append((follow, {"target": self.signals[name], "source": joined}))
 
     def read(self, net: Net) -> Any:
         """The signal that carries `net` to an input."""
@@ -147,7 +139,7 @@ class _Wiring:
         """Every instance to create: its block and its arguments."""
         for target, source in self.netlist.assignments():
             copy = {"target": self.write(target), "source": self.read(source)}
-            self.processes.append((_copy, copy))
+            self.processes.append((follow, copy))
         for _, entity, connections in self.netlist.instances():
             arguments = {}
             for port in entity.ports:

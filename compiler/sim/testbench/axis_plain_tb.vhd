@@ -28,6 +28,7 @@ architecture plain of rfc_plain_tb is
   signal aclk : std_logic := '0';
   signal aresetn : std_logic := '0';
   signal running : boolean := true;
+  -- The DMA streams' signals, declared as every AXI-Stream testbench of rfc declares them.
   signal s_tdata : std_logic_vector(8 * lanes - 1 downto 0) := (others => '0');
   signal s_tkeep : std_logic_vector(lanes - 1 downto 0) := (others => '0');
   signal s_tvalid, s_tready, s_tlast : std_logic := '0';

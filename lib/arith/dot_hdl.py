@@ -15,14 +15,14 @@ from collections.abc import Sequence
 
 from myhdl import Signal, always_seq, block
 
-from rfc.lib.arith.dot import dot_latency, dot_sum_levels
-from rfc.lib.arith.mac_hdl import round_to_format
+from rfc.lib.arith.dot import dot_latency
+from rfc.lib.arith.mac_hdl import adder_tree, round_to_format
 from rfc.lib.arith.pipeline import delay_line, signed_signal, stage_register, stall_control
 from rfc.lib.fixed import FixedFormat
 from rfc.lib.types import Instances, SignalLike
 
 
-# Signatures alike across rfc.lib blocks are its handshake convention, not a repeated idea.
+# Signature and body (a datapath beside `stall_control`) are rfc.lib's handshake convention.
 @block
 def fixed_dot(
     clk: SignalLike,
@@ -30,7 +30,7 @@ def fixed_dot(
     in_valid: SignalLike,
     in_ready: SignalLike,
     a: Sequence[SignalLike],
-    b: Sequence[SignalLike],
+    b: Sequence[SignalLike] | Sequence[int],
     out_valid: SignalLike,
     out_ready: SignalLike,
     result: SignalLike,
@@ -40,7 +40,7 @@ def fixed_dot(
 
     Ports: clock and handshakes named as in `rfc.lib.arith.pipeline`; `a` and `b` (inputs, as
     many of each) and `result` (output) are raw integers of `fmt`, the operands' and result's
-    format.
+    format; `b` holds signals, or the constant raw integers `constant_dot` has checked.
     """
     advance, valid_out = Signal(bool(0)), Signal(bool(0))
     datapath = dot_pipeline(clk, rst, advance, in_valid, a, b, valid_out, result, fmt)
@@ -48,7 +48,6 @@ def fixed_dot(
     return datapath, control
 
 
-# fixed_dot's body with constant `b`: a call to fixed_dot would rename the dot's registers.
 @block
 def constant_dot(
     clk: SignalLike,
@@ -80,10 +79,9 @@ def constant_dot(
             raise ValueError(
                 f"coefficient {value} is outside the format ({fmt.min_raw} to {fmt.max_raw})"
             )
-    advance, valid_out = Signal(bool(0)), Signal(bool(0))
-    datapath = dot_pipeline(clk, rst, advance, in_valid, a, coefficients, valid_out, result, fmt)
-    control = stall_control(valid_out, out_ready, advance, in_ready, out_valid)
-    return datapath, control
+    return fixed_dot(
+        clk, rst, in_valid, in_ready, a, coefficients, out_valid, out_ready, result, fmt
+    )
 
 
 @block
@@ -110,20 +108,13 @@ def dot_pipeline(
         else signal_product(clk, rst, advance, x, y, p)
         for x, y, p in zip(a, b, products, strict=True)
     ]
-    level = products
-    for _ in range(dot_sum_levels(len(a))):
-        sums = []
-        for k in range(0, len(level) - 1, 2):
-            total = signed_signal(max(len(level[k]), len(level[k + 1])) + 1)
-            parts.append(registered_add(clk, rst, advance, level[k], level[k + 1], total))
-            sums.append(total)
-        if len(level) % 2:
-            late = Signal(level[-1].val)
-            parts.append(stage_register(clk, rst, advance, level[-1], late))
-            sums.append(late)
-        level = sums
+    total = signed_signal(2 * fmt.width + (len(a) - 1).bit_length())
+    if len(a) == 1:  # a lone product still passes a register, as a sum's last level would
+        parts.append(stage_register(clk, rst, advance, products[0], total))
+    else:
+        parts.append(adder_tree(clk, rst, advance, [(p, 0) for p in products], total))
     rounded = fmt.signal()
-    parts.append(round_to_format(level[0], rounded, fmt))
+    parts.append(round_to_format(total, rounded, fmt))
     parts.append(stage_register(clk, rst, advance, rounded, result))
     # one valid bit per register: operands, products, adder levels, rounded result
     parts.append(delay_line(clk, rst, advance, valid_in, valid_out, dot_latency(len(a)) + 1))
@@ -174,23 +165,3 @@ def constant_product(
             product.next = a1 * factor
 
     return stages
-
-
-# Signatures of one-register blocks look alike across rfc.lib (engine's chain_stage).
-@block
-def registered_add(
-    clk: SignalLike,
-    rst: SignalLike,
-    advance: SignalLike,
-    x: SignalLike,
-    y: SignalLike,
-    total: SignalLike,
-) -> Instances:
-    """``x + y``, registered: one node of the adder tree."""
-
-    @always_seq(clk.posedge, reset=rst)
-    def add() -> None:
-        if advance:
-            total.next = x + y
-
-    return add

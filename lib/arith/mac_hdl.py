@@ -270,20 +270,39 @@ def exact_multiply(
             held = product if single else signed_signal(len(x) + len(y))
             parts.append(limb_product(clk, rst, advance, x, y, held))
             terms.append((held, a_low + b_low))
+    if len(terms) > 1:
+        parts.append(adder_tree(clk, rst, advance, terms, product))
+    return cuts, parts
+
+
+@block
+def adder_tree(
+    clk: SignalLike,
+    rst: SignalLike,
+    advance: SignalLike,
+    terms: list[tuple[SignalLike, int]],
+    total: SignalLike,
+) -> Instances:
+    """``Σ term << shift`` over two or more `terms` (term, shift), into `total`, registered.
+
+    A tree of two-input adders, a level per advancing cycle (``ceil(log2(len(terms)))``), the
+    odd term of a level waiting in a register; `total` holds the sum wrapped to its width.
+    """
+    parts = []
     while len(terms) > 1:
         level = []
         for k in range(0, len(terms) - 1, 2):
             (x, x_shift), (y, y_shift) = sorted(terms[k : k + 2], key=lambda t: t[1])
             wide = max(len(x), len(y) + y_shift - x_shift) + 1
-            total = product if len(terms) == 2 else signed_signal(wide)
-            parts.append(shifted_add(clk, rst, advance, x, y, y_shift - x_shift, total))
-            level.append((total, x_shift))
+            node = total if len(terms) == 2 else signed_signal(wide)
+            parts.append(shifted_add(clk, rst, advance, x, y, y_shift - x_shift, node))
+            level.append((node, x_shift))
         if len(terms) % 2:
             late = Signal(terms[-1][0].val)
             parts.append(stage_register(clk, rst, advance, terms[-1][0], late))
             level.append((late, terms[-1][1]))
         terms = level
-    return cuts, parts
+    return parts
 
 
 @block

@@ -47,13 +47,8 @@ def sincos(
         pipelined: One stage per iteration (a new angle every cycle) instead of one
             iteration per cycle in a single stage.
     """
-    if pipelined:
-        return sincos_pipelined(
-            clk, rst, in_valid, in_ready, angle, out_valid, out_ready, cos, sin, config
-        )
-    return sincos_iterative(
-        clk, rst, in_valid, in_ready, angle, out_valid, out_ready, cos, sin, config
-    )
+    variant = sincos_pipelined if pipelined else sincos_iterative
+    return variant(clk, rst, in_valid, in_ready, angle, out_valid, out_ready, cos, sin, config)
 
 
 # Ports as `sincos`'s, spelled again: each variant is a block of its own that rfc check's

@@ -56,11 +56,8 @@ def cordic_vectoring(
         pipelined: One stage per iteration (a new input every cycle) instead of one
             iteration per cycle in a single stage.
     """
-    if pipelined:
-        return cordic_pipelined(
-            clk, rst, in_valid, in_ready, x, y, out_valid, out_ready, angle, magnitude, config
-        )
-    return cordic_iterative(
+    variant = cordic_pipelined if pipelined else cordic_iterative
+    return variant(
         clk, rst, in_valid, in_ready, x, y, out_valid, out_ready, angle, magnitude, config
     )
 

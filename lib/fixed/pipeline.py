@@ -103,8 +103,8 @@ def float_to_fixed_pipeline(
             nan1.next = exponent == EXPONENT_ALL_ONES and bits[MANTISSA_BITS:0] != 0
             saturate1.next = exponent == EXPONENT_ALL_ONES or amount < 0
 
-    # Each stage copies the flags beside its data in its own process, on purpose: a shared
-    # block for them would add a process per flag and stage to every converted pipeline.
+    # Each stage copies the flags beside its data: a `data_delay` per flag is the same registers
+    # in an array, which tools/check_hdl_equivalence.py could not prove the same circuit.
     @always_seq(clk.posedge, reset=None)
     def coarse_shift() -> None:
         if advance:

@@ -95,15 +95,18 @@ class Converter:
         return bool(self.length_fields)
 
 
-# Like VhdlEntity, LoopbackReport, placement's CrossingConverter in shape only: a DMA stream.
 @dataclass(frozen=True)
 class DmaChannel:
     """One DMA channel and the converters on its end, indexed by chunk id."""
 
-    name: str
     direction: DmaDirection
     width: int
     converters: tuple[str, ...]
+
+    @property
+    def name(self) -> str:
+        """The AXI DMA's name of the channel: mm2s feeds the logic, s2mm drains it."""
+        return "mm2s" if self.direction is DmaDirection.PS_TO_PL else "s2mm"
 
 
 @dataclass(frozen=True)

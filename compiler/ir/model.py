@@ -12,7 +12,7 @@ how far the pipeline has got, and `rfc.ir.verify` checks the invariants of that 
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field
 from enum import IntEnum, StrEnum
 from pathlib import Path
@@ -84,6 +84,36 @@ class AcceleratorKind(StrEnum):
 
 
 @dataclass(frozen=True)
+class FieldSelection:
+    """Which fields of a message: what an accelerator input needs, what a connection carries.
+
+    Patterns are dotted field paths with ``*`` wildcards. The node holding a selection keeps
+    where each pattern was written in its ``spots``, under the keys `patterns` yields.
+
+    Attributes:
+        include: The fields selected; empty means every field.
+        exclude: The fields left out.
+    """
+
+    include: tuple[str, ...] = ()
+    exclude: tuple[str, ...] = ()
+
+    def __bool__(self) -> bool:
+        """False when it has no pattern, that is when it selects the whole message."""
+        return bool(self.include or self.exclude)
+
+    def __add__(self, other: FieldSelection) -> FieldSelection:
+        """The patterns of both: what ``a.include(...) >> b.exclude(...)`` carries."""
+        return FieldSelection(self.include + other.include, self.exclude + other.exclude)
+
+    def patterns(self) -> Iterator[tuple[str, str]]:
+        """Each pattern with its spot key (``include[0]``, ``exclude[1]``, ...)."""
+        for key, patterns in (("include", self.include), ("exclude", self.exclude)):
+            for index, pattern in enumerate(patterns):
+                yield f"{key}[{index}]", pattern
+
+
+@dataclass(frozen=True)
 class Port(_Spotted):
     """A typed port of an accelerator type or a block.
 
@@ -93,8 +123,7 @@ class Port(_Spotted):
         message: Message type: as written until resolve-types, canonical (``pkg/msg/Name``)
             after.
         location: Where the port (or the block that implies it) was written.
-        include: For an accelerator input: the fields it needs (patterns); empty means all.
-        exclude: For an accelerator input: fields it does not need (patterns).
+        needs: For an accelerator input: the fields it needs (empty: all).
         layout: From flatten-messages on: the message layout with the fields that flow through
             this port selected.
         spots: Locations of individual attributes (``message``, ``include[0]``, ...).
@@ -104,8 +133,7 @@ class Port(_Spotted):
     direction: Direction
     message: str
     location: SourceLocation
-    include: tuple[str, ...] = ()
-    exclude: tuple[str, ...] = ()
+    needs: FieldSelection = FieldSelection()
     layout: Layout | None = None
     spots: Mapping[str, SourceLocation] = field(default_factory=dict, compare=False, repr=False)
 
@@ -215,9 +243,6 @@ class Endpoint:
         return self.block if self.port is None else f"{self.block}.{self.port}"
 
 
-# Shares Port's include/exclude/spots tail: a port's patterns say what it needs, a connection's
-# what it carries (check-connections reconciles the two).
-# Its include/exclude are a Port's patterns too: one record for both would change every front-end.
 @dataclass(frozen=True)
 class Connection(_Spotted):
     """Messages flowing from a source port to a destination port.
@@ -226,8 +251,7 @@ class Connection(_Spotted):
         source: The sending block (and port, inferred by check-connections when not given).
         destination: The receiving block (and port).
         location: Where the connection was written (an ``outgoing`` entry, a ``>>``).
-        include: Field patterns carried (empty: all fields).
-        exclude: Field patterns not carried.
+        carries: The fields it carries (empty: all).
         message: From check-connections on: the canonical message type carried.
         fields: From expand-selections on: every leaf path carried, in serialization order
             (the paper's extended specification).
@@ -237,8 +261,7 @@ class Connection(_Spotted):
     source: Endpoint
     destination: Endpoint
     location: SourceLocation
-    include: tuple[str, ...] = ()
-    exclude: tuple[str, ...] = ()
+    carries: FieldSelection = FieldSelection()
     message: str | None = None
     fields: tuple[str, ...] | None = None
     spots: Mapping[str, SourceLocation] = field(default_factory=dict, compare=False, repr=False)

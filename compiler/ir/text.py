@@ -17,7 +17,16 @@ from typing import Any
 from rfc.errors import SourceLocation
 from rfc.ir.fields import selected_paths
 from rfc.ir.infrastructure import Converter, Infrastructure
-from rfc.ir.model import AcceleratorType, Block, BlockKind, Connection, Design, FunctionRef, Port
+from rfc.ir.model import (
+    AcceleratorType,
+    Block,
+    BlockKind,
+    Connection,
+    Design,
+    FieldSelection,
+    FunctionRef,
+    Port,
+)
 from rfc.ir.yaml_text import Flow, dump_yaml
 from rfc.messages.layout import Layout, LayoutField
 
@@ -103,8 +112,8 @@ class _Writer:
             "direction": port.direction.value,
             "message": port.message,
         }
-        if port.include or port.exclude:
-            entry["needs"] = {"include": list(port.include), "exclude": list(port.exclude)}
+        if port.needs:
+            entry["needs"] = self.selection(port.needs)
         entry.update(self._at(port.location))
         if port.layout is not None:
             entry["fields"] = layout_rows(port.layout)
@@ -131,11 +140,13 @@ class _Writer:
             "from": str(connection.source),
             "to": str(connection.destination),
             "message": connection.message,
-            "include": list(connection.include),
-            "exclude": list(connection.exclude),
+            **self.selection(connection.carries),
             "fields": None if connection.fields is None else list(connection.fields),
             **self._at(connection.location),
         }
+
+    def selection(self, selection: FieldSelection) -> dict[str, Any]:
+        return {"include": list(selection.include), "exclude": list(selection.exclude)}
 
     def infrastructure(self, infrastructure: Infrastructure) -> dict[str, Any]:
         document = {

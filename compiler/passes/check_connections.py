@@ -76,17 +76,16 @@ def _check_names(design: Design) -> None:
 def _check_port_needs(design: Design, types: MessageTypes) -> None:
     for accelerator in design.accelerators:
         for port in accelerator.ports:
-            if (port.include or port.exclude) and port.direction is Direction.OUT:
+            if port.needs and port.direction is Direction.OUT:
                 raise RfcError(
                     f"output '{port.name}' of accelerator '{accelerator.name}' has include or "
                     "exclude; only inputs say which fields they need (connections select what "
                     "an output sends)",
-                    location=port.at("include" if port.include else "exclude"),
+                    location=port.at("include" if port.needs.include else "exclude"),
                 )
             layout = flatten(types, port.message)
-            for key, patterns in (("include", port.include), ("exclude", port.exclude)):
-                for index, pattern in enumerate(patterns):
-                    validate_pattern(layout, pattern, port.at(f"{key}[{index}]"))
+            for key, pattern in port.needs.patterns():
+                validate_pattern(layout, pattern, port.at(key))
 
 
 def _resolve(connection: Connection, blocks: dict[str, Block]) -> Connection:
@@ -178,10 +177,9 @@ def _check_selection(connection: Connection, blocks: dict[str, Block], types: Me
     assert connection.message is not None
     assert connection.destination.port is not None
     layout = flatten(types, connection.message)
-    for key, patterns in (("include", connection.include), ("exclude", connection.exclude)):
-        for index, pattern in enumerate(patterns):
-            validate_pattern(layout, pattern, connection.at(f"{key}[{index}]"))
-    carried = set(carried_fields(types, connection.message, connection.include, connection.exclude))
+    for key, pattern in connection.carries.patterns():
+        validate_pattern(layout, pattern, connection.at(key))
+    carried = set(carried_fields(types, connection.message, connection.carries))
     what = f"connection from '{connection.source.block}' to '{connection.destination}'"
     if not carried:
         raise RfcError(
@@ -189,8 +187,8 @@ def _check_selection(connection: Connection, blocks: dict[str, Block], types: Me
             location=connection.location,
         )
     port = blocks[connection.destination.block].port(connection.destination.port)
-    if port.include or port.exclude:
-        needed = carried_fields(types, connection.message, port.include, port.exclude)
+    if port.needs:
+        needed = carried_fields(types, connection.message, port.needs)
         missing = [path for path in needed if path not in carried]
         if missing:
             more = f" (and {len(missing) - 1} more)" if len(missing) > 1 else ""

@@ -70,12 +70,8 @@ class DeriveInfrastructure:
             subscribers=subscribers,
             publishers=publishers,
             dma=(
-                DmaChannel(
-                    "mm2s", DmaDirection.PS_TO_PL, width, tuple(c.block for c in subscribers)
-                ),
-                DmaChannel(
-                    "s2mm", DmaDirection.PL_TO_PS, width, tuple(c.block for c in publishers)
-                ),
+                DmaChannel(DmaDirection.PS_TO_PL, width, tuple(c.block for c in subscribers)),
+                DmaChannel(DmaDirection.PL_TO_PS, width, tuple(c.block for c in publishers)),
             ),
             scheduler=_scheduler(design, publishers),
             buffers=buffers,

@@ -35,9 +35,9 @@ def _expand(
     types: MessageTypes, connection: Connection, inputs: dict[tuple[str, str], Port]
 ) -> Connection:
     assert connection.message is not None
-    fields = carried_fields(types, connection.message, connection.include, connection.exclude)
+    fields = carried_fields(types, connection.message, connection.carries)
     port = inputs.get((connection.destination.block, connection.destination.port or ""))
-    if port is not None and (port.include or port.exclude):
-        needed = set(carried_fields(types, connection.message, port.include, port.exclude))
+    if port is not None and port.needs:
+        needed = set(carried_fields(types, connection.message, port.needs))
         fields = tuple(path for path in fields if path in needed)
     return replace(connection, fields=fields)

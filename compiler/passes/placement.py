@@ -23,7 +23,6 @@ CONVERTER_INPUT = "in0"
 CONVERTER_OUTPUT = "out0"
 
 
-# Alike in shape only with rfc.ir.infrastructure's records: a crossing's converter before ids.
 @dataclass(frozen=True)
 class CrossingConverter:
     """A converter the logic needs at a hardware/software crossing.

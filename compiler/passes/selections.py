@@ -8,18 +8,18 @@ in the cache of the `MessageTypes` they were derived from.
 from __future__ import annotations
 
 from rfc.ir.fields import selected_paths, with_selection
+from rfc.ir.model import FieldSelection
 from rfc.messages.layout import Layout, flatten
 from rfc.messages.rosbags_adapter import MessageTypes
 from rfc.messages.selection import select
 
 
-def carried_fields(
-    types: MessageTypes, message: str, include: tuple[str, ...], exclude: tuple[str, ...]
-) -> tuple[str, ...]:
-    """The leaf paths that include/exclude patterns select, in serialization order."""
-    key = ("carried", message, include, exclude)
+def carried_fields(types: MessageTypes, message: str, selection: FieldSelection) -> tuple[str, ...]:
+    """The leaf paths a selection picks from a message, in serialization order."""
+    key = ("carried", message, selection)
     if key not in types.cache:
-        types.cache[key] = tuple(selected_paths(select(flatten(types, message), include, exclude)))
+        layout = select(flatten(types, message), selection.include, selection.exclude)
+        types.cache[key] = tuple(selected_paths(layout))
     paths: tuple[str, ...] = types.cache[key]
     return paths
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import inspect
 from collections.abc import Callable, Iterable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -13,6 +13,7 @@ from rfc.ir.model import (
     AcceleratorKind,
     AcceleratorType,
     Direction,
+    FieldSelection,
     FunctionRef,
     Port,
 )
@@ -25,8 +26,7 @@ class PortSpec:
     """A port's message type and, for inputs, the fields the accelerator needs."""
 
     message: str
-    include: tuple[str, ...] = ()
-    exclude: tuple[str, ...] = ()
+    needs: FieldSelection = field(default_factory=FieldSelection)
 
 
 def port(message: str, *, include: Iterable[str] = (), exclude: Iterable[str] = ()) -> PortSpec:
@@ -40,8 +40,9 @@ def port(message: str, *, include: Iterable[str] = (), exclude: Iterable[str] = 
     location, _ = call_site()
     return PortSpec(
         as_text(message, "port message", location),
-        as_texts(include, "include", location),
-        as_texts(exclude, "exclude", location),
+        FieldSelection(
+            as_texts(include, "include", location), as_texts(exclude, "exclude", location)
+        ),
     )
 
 
@@ -72,8 +73,7 @@ def _ports(spec: Any, direction: Direction, location: SourceLocation) -> tuple[P
                 direction=direction,
                 message=port_spec.message,
                 location=location,
-                include=port_spec.include,
-                exclude=port_spec.exclude,
+                needs=port_spec.needs,
             )
         )
     return tuple(ports)

@@ -32,6 +32,7 @@ from rfc.ir.model import (
     Connection,
     Design,
     Endpoint,
+    FieldSelection,
     ProjectSettings,
 )
 from rfc.messages.limits import Limits
@@ -46,28 +47,21 @@ class _Source:
     _project: Project
     _block: str
     _port: str | None = None
-    _include: tuple[str, ...] = ()
-    _exclude: tuple[str, ...] = ()
+    _carries: FieldSelection = FieldSelection()
 
     def include(self, *paths: str) -> Selection:
         """Carry only these fields over the next ``>>`` (dotted paths, ``*`` wildcards)."""
         location, _ = call_site()
-        return self._selection(as_texts(paths, "include", location), ())
+        return self._narrowed(FieldSelection(include=as_texts(paths, "include", location)))
 
     def exclude(self, *paths: str) -> Selection:
         """Do not carry these fields over the next ``>>``."""
         location, _ = call_site()
-        return self._selection((), as_texts(paths, "exclude", location))
+        return self._narrowed(FieldSelection(exclude=as_texts(paths, "exclude", location)))
 
-    def _selection(self, include: tuple[str, ...], exclude: tuple[str, ...]) -> Selection:
-        """This source with more fields included and excluded."""
-        return Selection(
-            self._project,
-            self._block,
-            self._port,
-            self._include + include,
-            self._exclude + exclude,
-        )
+    def _narrowed(self, more: FieldSelection) -> Selection:
+        """This source with the patterns of `more` added to its own."""
+        return Selection(self._project, self._block, self._port, self._carries + more)
 
     def __rshift__(self, destination: Any) -> BlockHandle:
         """Connect to a block, a block's port (``acc["q"]``) or a selection of one."""
@@ -108,11 +102,10 @@ class Selection(_Source):
         project: Project,
         block: str,
         port_name: str | None,
-        include: tuple[str, ...],
-        exclude: tuple[str, ...],
+        carries: FieldSelection,
     ) -> None:
         self._project, self._block, self._port = project, block, port_name
-        self._include, self._exclude = include, exclude
+        self._carries = carries
 
 
 class Project:
@@ -227,12 +220,10 @@ class Project:
             raise RfcError(
                 f"connect() needs a block or port as source, not {source!r}", location=location
             )
-        selected = Selection(
-            source._project,
-            source._block,
-            source._port,
-            source._include + as_texts(include, "include", location),
-            source._exclude + as_texts(exclude, "exclude", location),
+        selected = source._narrowed(
+            FieldSelection(
+                as_texts(include, "include", location), as_texts(exclude, "exclude", location)
+            )
         )
         return self._connect(selected, destination, location)
 
@@ -281,18 +272,14 @@ class Project:
                 raise RfcError(
                     f"block '{side._block}' belongs to another project", location=location
                 )
-        include = source._include + destination._include
-        exclude = source._exclude + destination._exclude
-        spots = {f"include[{i}]": location for i in range(len(include))}
-        spots.update({f"exclude[{i}]": location for i in range(len(exclude))})
+        carries = source._carries + destination._carries
         self._connections.append(
             Connection(
                 source=Endpoint(source._block, source._port, location),
                 destination=Endpoint(destination._block, destination._port, location),
                 location=location,
-                include=include,
-                exclude=exclude,
-                spots=spots,
+                carries=carries,
+                spots={key: location for key, _ in carries.patterns()},
             )
         )
         return BlockHandle(self, destination._block)

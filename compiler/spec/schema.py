@@ -173,8 +173,8 @@ ACCELERATOR = Section(
         Key("reference", (_S,), "Python reference model: 'file.py:function' or 'function'."),
     ),
 )
-# include/exclude read as PORT's, but here they select what one connection carries, there
-# what an accelerator input needs.
+# include/exclude are PORT's keys too (one FieldSelection in the IR); only their help differs:
+# here what a connection carries, there what an accelerator input needs.
 OUTGOING = Section(
     "outgoing",
     "A connection from this block to another.",

@@ -20,6 +20,7 @@ from rfc.ir.model import (
     Design,
     Direction,
     Endpoint,
+    FieldSelection,
     FunctionRef,
     Port,
     ProjectSettings,
@@ -211,17 +212,14 @@ class _YamlFrontend:
         reader = MappingReader(node, PORT, f"{what} of {owner}", named=f"port of {owner}")
         name = reader.get("name", common.default_port_name(direction.value, index))
         self._state_middleware(reader, f"port '{name}' of {owner}")
-        include, exclude = reader.strings("include"), reader.strings("exclude")
-        spots = {key: reader.location(key) for key in reader.values}
-        spots.update(_pattern_spots(include, exclude))
+        needs, pattern_spots = _selection(reader)
         return Port(
             name=name,
             direction=direction,
             message=reader.get("message"),
             location=node.location,
-            include=tuple(text for text, _ in include),
-            exclude=tuple(text for text, _ in exclude),
-            spots=spots,
+            needs=needs,
+            spots={key: reader.location(key) for key in reader.values} | pattern_spots,
         )
 
     def _block(self, node: YamlNode, clock: float) -> tuple[Block, list[Connection]]:
@@ -292,20 +290,22 @@ class _YamlFrontend:
 
     def _connection(self, node: YamlNode, source: str) -> Connection:
         reader = MappingReader(node, OUTGOING, f"an outgoing entry of block '{source}'")
-        include, exclude = reader.strings("include"), reader.strings("exclude")
+        carries, spots = _selection(reader)
         return Connection(
             source=Endpoint(source, reader.get("from"), reader.location("from")),
             destination=Endpoint(reader.get("name"), reader.get("port"), reader.location("name")),
             location=node.location,
-            include=tuple(text for text, _ in include),
-            exclude=tuple(text for text, _ in exclude),
-            spots=_pattern_spots(include, exclude),
+            carries=carries,
+            spots=spots,
         )
 
 
-def _pattern_spots(
-    include: list[tuple[str, SourceLocation]], exclude: list[tuple[str, SourceLocation]]
-) -> dict[str, SourceLocation]:
-    spots = {f"include[{i}]": location for i, (_, location) in enumerate(include)}
-    spots.update({f"exclude[{i}]": location for i, (_, location) in enumerate(exclude)})
-    return spots
+def _selection(reader: MappingReader) -> tuple[FieldSelection, dict[str, SourceLocation]]:
+    """The include/exclude keys of a port or an outgoing entry, with where each pattern is."""
+    include, exclude = reader.strings("include"), reader.strings("exclude")
+    selection = FieldSelection(
+        tuple(text for text, _ in include), tuple(text for text, _ in exclude)
+    )
+    locations = [location for _, location in (*include, *exclude)]
+    keys = [key for key, _ in selection.patterns()]
+    return selection, dict(zip(keys, locations, strict=True))

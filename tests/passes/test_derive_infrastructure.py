@@ -103,8 +103,17 @@ blocks:
         (1, "Sum_pub", None, 100),
     ]
     mm2s, s2mm = infrastructure.dma
-    assert (mm2s.direction, mm2s.converters) == (DmaDirection.PS_TO_PL, ("A_sub", "B_sub"))
-    assert (s2mm.direction, s2mm.converters) == (DmaDirection.PL_TO_PS, ("Diff_pub", "Sum_pub"))
+    # AXI DMA names: MM2S reads memory into the logic, S2MM writes its results back.
+    assert (mm2s.name, mm2s.direction, mm2s.converters) == (
+        "mm2s",
+        DmaDirection.PS_TO_PL,
+        ("A_sub", "B_sub"),
+    )
+    assert (s2mm.name, s2mm.direction, s2mm.converters) == (
+        "s2mm",
+        DmaDirection.PL_TO_PS,
+        ("Diff_pub", "Sum_pub"),
+    )
 
 
 def test_frame_bound_covers_the_largest_bounded_message(tmp_path):

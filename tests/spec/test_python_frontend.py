@@ -78,7 +78,7 @@ def test_selections_on_either_side_of_the_arrow():
     connect_location = line() - 2
     design = project.design()
     first = design.connections[0]
-    assert first.include == ("x", "y")
+    assert first.carries.include == ("x", "y")
     assert (Path(first.location.file).resolve(), first.location.line) == (HERE, connect_location)
     assert first.location.column == 5
     expanded = run_pipeline(design).connections[0]
@@ -90,7 +90,7 @@ def test_include_and_exclude_chain_on_one_source():
     sub.include("x", "y").include("z").exclude("z") >> acc
     acc >> pub
     first = project.design().connections[0]
-    assert (first.include, first.exclude) == (("x", "y", "z"), ("z",))
+    assert (first.carries.include, first.carries.exclude) == (("x", "y", "z"), ("z",))
     assert run_pipeline(project.design()).connections[0].fields == ("x", "y")
 
 

@@ -181,7 +181,7 @@ class VhdlPort:
     column: int
 
 
-# Like rfc.ir's DmaChannel and the loopback's LoopbackReport in shape only: parsed VHDL.
+# Like the loopback's LoopbackReport in shape only: parsed VHDL.
 @dataclass(frozen=True)
 class VhdlEntity:
     """An entity's name, where it is declared, and its ports in order."""

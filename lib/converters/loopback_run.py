@@ -64,7 +64,7 @@ class LoopbackResult:
     publisher_cycles: int
 
 
-# Like rfc.ir's DmaChannel and rfc.toolchain's VhdlEntity in shape only: a run's results.
+# Like rfc.toolchain's VhdlEntity in shape only: a run's results.
 @dataclass(frozen=True)
 class LoopbackReport:
     """All messages of a type through the loopback (its JSON: docs/architecture.md)."""

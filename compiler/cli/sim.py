@@ -24,7 +24,7 @@ from rich.console import Console
 from rich.table import Table
 
 from rfc.cli.notes import note_skipped_topics
-from rfc.cli.options import Simulator
+from rfc.cli.options import JsonOption, Simulator
 from rfc.cli.progress import counting_bar
 from rfc.errors import RfcError, did_you_mean
 from rfc.runtime.core import DEFAULT_DEPTH, QueuePolicy
@@ -94,11 +94,8 @@ def sim(
             "the logic counts as stalled (plus 4x the longest transfer).",
         ),
     ] = DEFAULT_STALL_CYCLES,
-    # Typer declares every option in the signature: rfc build's options look alike, not the same.
     seed: Annotated[int, typer.Option("--seed", help="Seed of random idle/backpressure.")] = 1,
-    as_json: Annotated[
-        bool, typer.Option("--json", help="Print the account as one JSON document.")
-    ] = False,
+    as_json: JsonOption = False,
     send_malformed: Annotated[
         bool,
         typer.Option(
@@ -117,6 +114,7 @@ def sim(
         int | None,
         typer.Option("--limit", min=1, metavar="N", help="Replay only the bag's first N messages."),
     ] = None,
+    # Typer declares every option in the signature: rfc build's options look alike, not the same.
     topics: Annotated[
         list[str] | None,
         typer.Option(

@@ -8,7 +8,7 @@ LARGE messages) go
     compiled logic first: Verilator's model, GHDL's program), and
 (b) through a plain testbench of the same logic on the same simulator, without Python:
     Verilator runs the C++ testbench (``compiler/sim/testbench/axis_engine.cpp --batch``) on a file
-    of transfers; GHDL runs ``compiler/sim/testbench/axis_plain_tb.vhd``, which reads them with
+    of transfers; GHDL runs ``tools/bench_sim_plain_tb.vhd``, which reads them with
     textio, on the back-end rfc sim uses (analysis and elaboration are not timed).
 
 With ``myhdl`` as the simulator, (a) runs ``rfc sim --backend myhdl`` (the whole logic in MyHDL's
@@ -86,7 +86,7 @@ DRAIN = 300
 SEED = 1
 #: The replay settings of the in-process harnesses (as ``rfc sim --drain-cycles DRAIN``).
 SETTINGS = ReplaySettings(drain_cycles=DRAIN, seed=SEED)
-PLAIN_TB = ROOT / "compiler" / "sim" / "testbench" / "axis_plain_tb.vhd"
+PLAIN_TB = ROOT / "tools" / "bench_sim_plain_tb.vhd"
 ODOMETRY_SPEC = """\
 project: {name: OdomPass, middleware: ROS2, busWidth: 64, scheduler: LRU}
 accelerators:

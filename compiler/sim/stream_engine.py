@@ -187,6 +187,7 @@ class EngineReplay:
         busy: The logic's ``busy`` bits, or None when its top level has none.
     """
 
+    # Keeps its collaborators and the replay's state: like the converters' defaults in shape only.
     def __init__(
         self,
         engine: StreamEngine,

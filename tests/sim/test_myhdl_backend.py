@@ -52,3 +52,19 @@ def test_messages_closer_than_the_logic_needs_contend_in_the_queues(tmp_path):
     )
     assert runtime.account.dropped == {("Pose_sub", "overflow"): 4}
     assert len(published) == 10
+
+
+def test_progress_is_told_every_message_offered_in_order(tmp_path):
+    design = compiled(tmp_path, "pose_mixed.yaml")
+    plan = DesignPlan(design)
+    messages = pose_messages(plan.types, 5)
+    told: list[int] = []
+    simulate_with_myhdl(
+        partial(echo_logic, routes=route_table(design), cut_beats=0),
+        64,
+        Runtime(plan),
+        messages,
+        clock_mhz=100.0,
+        settings=ReplaySettings(drain_cycles=40, progress=told.append),
+    )
+    assert told == list(range(1, len(messages) + 1))

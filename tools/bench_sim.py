@@ -8,7 +8,7 @@ LARGE messages) go
     compiled logic first: Verilator's model, GHDL's program), and
 (b) through a plain testbench of the same logic on the same simulator, without Python:
     Verilator runs the C++ testbench (``compiler/sim/testbench/axis_engine.cpp --batch``) on a file
-    of transfers; GHDL runs ``compiler/sim/testbench/axis_plain_tb.vhd``, which reads them with
+    of transfers; GHDL runs ``tools/bench_sim_plain_tb.vhd``, which reads them with
     textio, on the back-end rfc sim uses (analysis and elaboration are not timed).
 
 With ``myhdl`` as the simulator, (a) runs ``rfc sim --backend myhdl`` (the whole logic in MyHDL's
@@ -64,8 +64,8 @@ from rfc.messages.rosbags_adapter import (  # noqa: E402
 )
 from rfc.runtime.core import Published, QueueConfig, Queued, Runtime  # noqa: E402
 from rfc.runtime.protocol import HEADER_SIZE, Chunk  # noqa: E402
-from rfc.runtime.stall import DEFAULT_STALL_CYCLES  # noqa: E402
 from rfc.sim.hardware import SimulationTop, simulate_with_ghdl  # noqa: E402
+from rfc.sim.settings import ReplaySettings  # noqa: E402
 from rfc.sim.stream_engine import (  # noqa: E402
     RESET_CYCLES,
     build_engine,
@@ -84,7 +84,9 @@ ODOMETRY = "nav_msgs/msg/Odometry"
 SHARED = Path(os.environ.get("RFC_SHARED_DATA", ROOT.parent / "shared" / "data"))
 DRAIN = 300
 SEED = 1
-PLAIN_TB = ROOT / "compiler" / "sim" / "testbench" / "axis_plain_tb.vhd"
+#: The replay settings of the in-process harnesses (as ``rfc sim --drain-cycles DRAIN``).
+SETTINGS = ReplaySettings(drain_cycles=DRAIN, seed=SEED)
+PLAIN_TB = ROOT / "tools" / "bench_sim_plain_tb.vhd"
 ODOMETRY_SPEC = """\
 project: {name: OdomPass, middleware: ROS2, busWidth: 64, scheduler: LRU}
 accelerators:
@@ -177,9 +179,7 @@ def record(spec: Path, bag: Path, top: object) -> Stimulus:
         read_bag(bag, types, runtime.topics),
         top,  # type: ignore[arg-type]
         clock_mhz=design.project.clock_mhz,
-        drain_cycles=DRAIN,
-        stall_cycles=DEFAULT_STALL_CYCLES,
-        seed=SEED,
+        settings=SETTINGS,
     )
     return Stimulus(runtime.sent, runtime.now - RESET_CYCLES + DRAIN, len(published))
 
@@ -221,6 +221,9 @@ class Cost:
 
     wall: float
     cpu: float
+
+    def __add__(self, other: Cost) -> Cost:
+        return Cost(self.wall + other.wall, self.cpu + other.cpu)
 
     def __sub__(self, other: Cost) -> Cost:
         return Cost(self.wall - other.wall, self.cpu - other.cpu)
@@ -325,7 +328,7 @@ def cocotb_harness(spec: Path, bag: Path, folder: Path, top: SimulationTop) -> C
     start = now()
     own = resource.getrusage(resource.RUSAGE_SELF)
     simulate_with_ghdl(
-        design, bag, topics, top, folder, queues=QueueConfig(), drain_cycles=DRAIN, seed=SEED,
+        design, bag, topics, top, folder, queues=QueueConfig(), settings=SETTINGS,
         simulator="verilator",
     )  # fmt: skip
     after = resource.getrusage(resource.RUSAGE_SELF)

@@ -12,9 +12,9 @@ import json
 import shutil
 import sys
 import tempfile
-from collections.abc import Callable, Generator
+from collections.abc import Generator
 from contextlib import closing
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from enum import StrEnum
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated
@@ -24,11 +24,12 @@ from rich.console import Console
 from rich.table import Table
 
 from rfc.cli.notes import note_skipped_topics
-from rfc.cli.options import Simulator
+from rfc.cli.options import JsonOption, Simulator
 from rfc.cli.progress import counting_bar
 from rfc.errors import RfcError, did_you_mean
 from rfc.runtime.core import DEFAULT_DEPTH, QueuePolicy
 from rfc.runtime.stall import DEFAULT_STALL_CYCLES
+from rfc.sim.settings import DEFAULT_DRAIN_CYCLES, ReplaySettings
 
 if TYPE_CHECKING:
     from rfc.ir.model import Design
@@ -83,7 +84,7 @@ def sim(
     drain_cycles: Annotated[
         int,
         typer.Option("--drain-cycles", min=1, help="Quiet cycles after which the logic is idle."),
-    ] = 1000,
+    ] = DEFAULT_DRAIN_CYCLES,
     stall_cycles: Annotated[
         int,
         typer.Option(
@@ -93,11 +94,8 @@ def sim(
             "the logic counts as stalled (plus 4x the longest transfer).",
         ),
     ] = DEFAULT_STALL_CYCLES,
-    # Typer declares every option in the signature: rfc build's options look alike, not the same.
     seed: Annotated[int, typer.Option("--seed", help="Seed of random idle/backpressure.")] = 1,
-    as_json: Annotated[
-        bool, typer.Option("--json", help="Print the account as one JSON document.")
-    ] = False,
+    as_json: JsonOption = False,
     send_malformed: Annotated[
         bool,
         typer.Option(
@@ -116,6 +114,7 @@ def sim(
         int | None,
         typer.Option("--limit", min=1, metavar="N", help="Replay only the bag's first N messages."),
     ] = None,
+    # Typer declares every option in the signature: rfc build's options look alike, not the same.
     topics: Annotated[
         list[str] | None,
         typer.Option(
@@ -190,32 +189,28 @@ def sim(
             raise typer.BadParameter("--netlist simulates VHDL netlists: use --simulator ghdl")
         simulator = Simulator.GHDL
         top_provider = top_provider or NETLIST_TOP_PROVIDER
-    run = _Run(
-        bag,
-        types,
-        topic_names,
-        runtime,
-        design,
-        backend,
-        drain_cycles,
-        stall_cycles,
-        seed,
-        top_provider,
-        simulator,
-    )
-    with counting_bar("replaying", hidden=as_json) as progress:
-        task = progress.add_task("replay", total=run.total())
-        published, account = run.execute(lambda done: progress.update(task, completed=done))
+    run = _Run(bag, types, topic_names, runtime, design, backend, top_provider, simulator)
+    warnings: list[str] = []
+    with counting_bar("replaying", hidden=as_json) as bar:
+        task = bar.add_task("replay", total=run.total())
+        settings = ReplaySettings(
+            drain_cycles,
+            stall_cycles,
+            seed,
+            progress=lambda done: bar.update(task, completed=done),
+            warnings=warnings,
+        )
+        published, account = run.execute(settings)
     write_bag(
         out,
         types,
         {output.topic: output.message for output in plan.outputs},
         ((p.topic, p.stamp, p.data) for p in published),
     )
-    for warning in run.warnings:
+    for warning in warnings:
         print(f"warning: {warning}", file=sys.stderr)
     if as_json:
-        document = {"out": str(out), **account.to_json(), "warnings": run.warnings}
+        document = {"out": str(out), **account.to_json(), "warnings": warnings}
         print(json.dumps(document, indent=1))
     else:
         _print_account(Console(highlight=False), account, plan, out)
@@ -231,13 +226,8 @@ class _Run:
     runtime: Runtime
     design: Design
     backend: Backend
-    drain_cycles: int
-    stall_cycles: int
-    seed: int
     top_provider: str | None
     simulator: Simulator | None = None
-    warnings: list[str] = field(default_factory=list)
-    """What the replay gave up waiting for (`rfc.sim.busy`), filled by `execute`."""
 
     def total(self) -> int:
         from rfc.messages.rosbags_adapter import bag_topics
@@ -251,7 +241,7 @@ class _Run:
         for message in read_bag(self.bag, self.types, sorted(self.topic_names)):
             yield replace(message, topic=self.topic_names[message.topic])
 
-    def execute(self, progress: Callable[[int], None]) -> tuple[list[Published], Account]:
+    def execute(self, settings: ReplaySettings) -> tuple[list[Published], Account]:
         from rfc.runtime.replay import replay
         from rfc.sim.hardware import DEFAULT_TOP_PROVIDER, load_top_provider
         from rfc.toolchain import CosimError
@@ -259,15 +249,15 @@ class _Run:
         runtime, design = self.runtime, self.design
         if not runtime.plan.has_logic:
             with closing(self.messages()) as messages:
-                return replay(runtime, messages, None, progress), runtime.account
+                return replay(runtime, messages, None, settings.progress), runtime.account
         provider = load_top_provider(self.top_provider or DEFAULT_TOP_PROVIDER)
         scratch = Path(tempfile.mkdtemp(prefix="rfc-sim-"))
         try:
             top = provider(design, scratch / "hdl")
             if self.backend is Backend.MYHDL:
-                published = self._myhdl(top, progress)
+                published = self._myhdl(top, settings)
             else:
-                published, account = self._ghdl(top, scratch, progress)
+                published, account = self._ghdl(top, scratch, settings)
                 runtime.account = account
         except CosimError as exc:  # the logic or a ROS-SW function failed in the simulator
             raise RfcError(f"the simulation of {design.project.name} failed: {exc}") from None
@@ -278,13 +268,13 @@ class _Run:
         return published, runtime.account
 
     def _ghdl(
-        self, top: SimulationTop, scratch: Path, progress: Callable[[int], None]
+        self, top: SimulationTop, scratch: Path, settings: ReplaySettings
     ) -> tuple[list[Published], Account]:
         from rfc.sim.hardware import simulate_with_ghdl
 
         simulator = self._simulator(top)
         if simulator == "verilator":
-            return self._engine(top, progress), self.runtime.account
+            return self._engine(top, settings), self.runtime.account
         run = simulate_with_ghdl(
             self.design,
             self.bag.resolve(),
@@ -293,17 +283,13 @@ class _Run:
             scratch,
             queues=self.runtime.queues,
             screen=self.runtime.screen,
-            drain_cycles=self.drain_cycles,
-            stall_cycles=self.stall_cycles,
-            seed=self.seed,
-            progress=progress,
+            settings=settings,
             simulator=simulator,
             notice=lambda line: print(line, file=sys.stderr),
         )
-        self.warnings.extend(run.warnings)
         return run.published, run.account
 
-    def _engine(self, top: SimulationTop, progress: Callable[[int], None]) -> list[Published]:
+    def _engine(self, top: SimulationTop, settings: ReplaySettings) -> list[Published]:
         """Verilator with the DMA streams driven in C++ (`rfc.sim.stream_engine`)."""
         from rfc.sim.stream_engine import EngineError, simulate_with_engine
         from rfc.toolchain import CosimError
@@ -316,11 +302,7 @@ class _Run:
                     messages,
                     top,  # type: ignore[arg-type]  # _simulator checked it has Verilog
                     clock_mhz=self.design.project.clock_mhz,
-                    drain_cycles=self.drain_cycles,
-                    stall_cycles=self.stall_cycles,
-                    seed=self.seed,
-                    progress=progress,
-                    warnings=self.warnings,
+                    settings=settings,
                 )
         except (VerilatorError, EngineError) as exc:
             raise CosimError(str(exc)) from None
@@ -340,7 +322,7 @@ class _Run:
             return "verilator" if verilog else "ghdl"
         return self.simulator.value
 
-    def _myhdl(self, top: SimulationTop, progress: Callable[[int], None]) -> list[Published]:
+    def _myhdl(self, top: SimulationTop, settings: ReplaySettings) -> list[Published]:
         from rfc.sim.myhdl_sim import simulate_with_myhdl
 
         factory = getattr(top, "myhdl", None)
@@ -362,12 +344,8 @@ class _Run:
                 self.runtime,
                 messages,
                 clock_mhz=self.design.project.clock_mhz,
-                drain_cycles=self.drain_cycles,
-                stall_cycles=self.stall_cycles,
-                seed=self.seed,
-                progress=progress,
+                settings=settings,
                 busy=tuple(getattr(top, "busy", ())),
-                warnings=self.warnings,
             )
 
 

@@ -6,12 +6,8 @@ with the DMA streams driven in C++ (`rfc.sim.stream_engine`), against a MyHDL mo
 (`rfc.sim.myhdl_sim`), and HLS accelerators C-simulated on the processor
 (`rfc.sim.hls_csim`); the busy bits they all read (`rfc.sim.busy`).
 
-The replay settings mean the same to every harness: ``drain_cycles``, the cycles of silence
-after which the system is idle; ``stall_cycles``, the cycles without a completed DMA transfer,
-while work is pending, after which the logic counts as stalled (`rfc.runtime.stall`), and the
-longest the busy bits are waited for; ``seed``, of the random idle and backpressure;
-``progress``, called now and then with the number of messages offered so far; ``warnings``,
-receiving what the replay gave up waiting for (`rfc.sim.busy`).
+The replay settings (`rfc.sim.settings.ReplaySettings`: drain and stall windows, seed,
+progress, warnings) mean the same to every harness; ``rfc sim`` chooses them once.
 
 Layer: above the driver, beside the wizard; it may import the driver and every layer under it
 (it compiles the spec, lowers the plan and runs the toolchain), never the command line. The

@@ -26,15 +26,14 @@ from rfc.ir.model import Design
 from rfc.runtime.account import Account
 from rfc.runtime.core import Published, QueueConfig
 from rfc.runtime.records import read_records
-from rfc.runtime.stall import DEFAULT_STALL_CYCLES, StallError
+from rfc.runtime.stall import StallError
+from rfc.sim.settings import DEFAULT_SETTINGS, ReplaySettings
 from rfc.toolchain import CosimError, run_cocotb
 from rfc.toolchain.cocotb_sim import CompiledLogic, compile_logic, compiled_logic
 from rfc.toolchain.ghdl import fastest_backend
 
 #: The top provider of the whole-system hardware generation.
 DEFAULT_TOP_PROVIDER = "rfc.lower.hardware:simulation_top"
-#: Cycles of silence after which the simulated system counts as idle.
-DEFAULT_DRAIN_CYCLES = 1000
 
 
 class SimulationTop(Protocol):
@@ -103,7 +102,6 @@ class SimulationRun:
 
     published: list[Published]
     account: Account
-    warnings: tuple[str, ...] = ()
 
 
 def simulate_with_ghdl(
@@ -115,10 +113,7 @@ def simulate_with_ghdl(
     *,
     queues: QueueConfig,
     screen: bool = True,
-    drain_cycles: int = DEFAULT_DRAIN_CYCLES,
-    stall_cycles: int = DEFAULT_STALL_CYCLES,
-    seed: int = 1,
-    progress: Callable[[int], None] | None = None,
+    settings: ReplaySettings = DEFAULT_SETTINGS,
     simulator: str = "ghdl",
     notice: Callable[[str], None] | None = None,
 ) -> SimulationRun:
@@ -133,7 +128,7 @@ def simulate_with_ghdl(
         queues: The processor's callback queues.
         screen: Whether the processor refuses malformed messages itself (else the logic's
             subscribers drop them; the account reads their counts, ``logic:<reason>``).
-        drain_cycles, stall_cycles, seed, progress: The replay settings (`rfc.sim`).
+        settings: The replay settings.
         simulator: ``ghdl`` (the VHDL) or ``verilator`` (the top's ``verilog`` files).
         notice: Told in one line which GHDL back-end runs the logic, and whether it compiles
             the logic or reuses what an earlier run compiled.
@@ -151,9 +146,9 @@ def simulate_with_ghdl(
         "policy": queues.policy.value,
         "depth": queues.depth,
         "screen": screen,
-        "drain_cycles": drain_cycles,
-        "stall_cycles": stall_cycles,
-        "seed": seed,
+        "drain_cycles": settings.drain_cycles,
+        "stall_cycles": settings.stall_cycles,
+        "seed": settings.seed,
         "results": str(workdir / "published.rec"),
         "account": str(workdir / "account.json"),
         "progress": str(workdir / "progress"),
@@ -174,7 +169,7 @@ def simulate_with_ghdl(
                 "rfc.sim.cosim",
                 workdir / "sim",
                 env={"RFC_SIM_JOB": str(job_file)},
-                seed=seed,
+                seed=settings.seed,
                 simulator=simulator,
                 compiled=compiled,
             )
@@ -185,8 +180,8 @@ def simulate_with_ghdl(
     worker.start()
     while worker.is_alive():
         worker.join(0.25)
-        if progress is not None and (text := _read(workdir / "progress")):
-            progress(int(text))
+        if settings.progress is not None and (text := _read(workdir / "progress")):
+            settings.progress(int(text))
     if failure:
         raise failure[0]
     if stalled := _read(Path(job["stalled"])):
@@ -194,10 +189,11 @@ def simulate_with_ghdl(
         raise StallError(report["message"], hint=report["hint"])
     if not Path(job["account"]).is_file():
         raise CosimError(f"the simulation wrote no account (see {workdir / 'sim'})")
+    if settings.warnings is not None:
+        settings.warnings.extend(json.loads(Path(job["warnings"]).read_text()))
     return SimulationRun(
         list(read_records(Path(job["results"]))),
         Account.from_json(json.loads(Path(job["account"]).read_text())),
-        tuple(json.loads(Path(job["warnings"]).read_text())),
     )
 
 

@@ -22,8 +22,9 @@ from rfc.messages.rosbags_adapter import BagMessage
 from rfc.runtime.arrivals import IDLE_FRACTION, ArrivalClock
 from rfc.runtime.core import Published, Runtime
 from rfc.runtime.protocol import Chunk
-from rfc.runtime.stall import DEFAULT_STALL_CYCLES, StallWatch, largest_output, pending_work
+from rfc.runtime.stall import StallWatch, largest_output, pending_work
 from rfc.sim.busy import BusyWatch
+from rfc.sim.settings import ReplaySettings
 
 MyhdlFactory = Callable[..., Any]
 
@@ -45,12 +46,8 @@ def simulate_with_myhdl(
     messages: Iterable[BagMessage],
     *,
     clock_mhz: float,
-    drain_cycles: int,
-    stall_cycles: int = DEFAULT_STALL_CYCLES,
-    seed: int = 1,
-    progress: Callable[[int], None] | None = None,
+    settings: ReplaySettings,
     busy: tuple[str, ...] = (),
-    warnings: list[str] | None = None,
 ) -> list[Published]:
     """Replay `messages` (spec topics, time order) through the MyHDL logic; finish the account.
 
@@ -60,8 +57,8 @@ def simulate_with_myhdl(
         runtime: The processor side.
         messages: Input messages in time order, on the spec's topics.
         clock_mhz: The logic's clock.
+        settings: The replay settings.
         busy: The blocks the logic's ``busy`` port watches (none: it has no such port).
-        drain_cycles, stall_cycles, seed, progress, warnings: The replay settings (`rfc.sim`).
 
     Raises:
         StallError: The logic stalled (`rfc.runtime.stall`).
@@ -83,14 +80,7 @@ def simulate_with_myhdl(
     }
     if busy:
         ports["busy"] = Signal(intbv(0)[len(busy) :])
-    published: list[Published] = []
-    watch = StallWatch(stall_cycles, lanes, largest_output(runtime))
-    processor = _Processor(
-        ports, lanes, runtime, iter(messages), clock_mhz, drain_cycles, seed, watch
-    )
-    processor.progress = progress
-    processor.published = published
-    processor.busy = BusyWatch(busy, stall_cycles)
+    processor = _Processor(ports, lanes, runtime, iter(messages), clock_mhz, settings, busy)
 
     @block
     def bench() -> Any:
@@ -110,16 +100,15 @@ def simulate_with_myhdl(
         return logic, clock, drive
 
     bench().run_sim(quiet=1)
-    if warnings is not None:
-        warnings += processor.busy.warnings
+    if settings.warnings is not None:
+        settings.warnings.extend(processor.busy.warnings)
     runtime.finish()
-    return published
+    return processor.published
 
 
 class _Processor:
     """The processor side of the testbench, one rising edge at a time."""
 
-    # Keeps its arguments as a constructor does: alike in shape only with runtime.software's.
     def __init__(
         self,
         ports: dict[str, Any],
@@ -127,23 +116,21 @@ class _Processor:
         runtime: Runtime,
         messages: Iterator[BagMessage],
         clock_mhz: float,
-        drain_cycles: int,
-        seed: int,
-        watch: StallWatch,
+        settings: ReplaySettings,
+        busy: tuple[str, ...],
     ) -> None:
         self.ports = ports
         self.lanes = lanes
         self.runtime = runtime
         self.messages = messages
         self.arrivals = ArrivalClock(clock_mhz)
-        self.drain = drain_cycles
-        self.chance = random.Random(seed)
-        self.progress: Callable[[int], None] | None = None
+        self.settings = settings
+        self.chance = random.Random(settings.seed)
         self.published: list[Published] = []
         self.beats: list[tuple[int, int, bool]] = []
         self.sending: Chunk | None = None
-        self.watch = watch
-        self.busy = BusyWatch((), 0)
+        self.watch = StallWatch(settings.stall_cycles, lanes, largest_output(runtime))
+        self.busy = BusyWatch(busy, settings.stall_cycles)
         self.received = bytearray()
         self.stamp = 0
         self.cycle = 0
@@ -171,11 +158,12 @@ class _Processor:
             self.quiet = 0 if busy or moved or working else self.quiet + 1
             sending = self.sending.size if self.sending is not None else 0
             self.watch.check(self.cycle, busy, self._pending, sending, self._receiving())
-            if upcoming is None and self.quiet >= self.drain:
+            drain = self.settings.drain_cycles
+            if upcoming is None and self.quiet >= drain:
                 raise StopSimulation
             while upcoming is not None:  # every message due by now, together
                 due = self.arrivals.due(upcoming.timestamp_ns)
-                if self.cycle < due and self.quiet < self.drain:
+                if self.cycle < due and self.quiet < drain:
                     break
                 self.arrivals.offered(self.cycle, due)
                 self._offer(upcoming)
@@ -187,8 +175,8 @@ class _Processor:
         self.published += self.runtime.offer(message.topic, message.data, self.stamp, self.cycle)
         self.offered += 1
         self.quiet = 0
-        if self.progress is not None:
-            self.progress(self.offered)
+        if self.settings.progress is not None:
+            self.settings.progress(self.offered)
 
     def _sample(self) -> bool:
         """Take the beats that moved on this edge; return whether any did."""

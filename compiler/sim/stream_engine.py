@@ -20,7 +20,7 @@ import random
 import re
 import struct
 import subprocess
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Protocol
@@ -33,6 +33,7 @@ from rfc.runtime.plan import ToTopic
 from rfc.runtime.protocol import Chunk
 from rfc.runtime.stall import AnswerWait, StallWatch, largest_output, pending_work
 from rfc.sim.busy import BusyWatch
+from rfc.sim.settings import ReplaySettings
 from rfc.toolchain.verilator import build_stream_engine
 
 #: The engine's C++ source.
@@ -182,31 +183,30 @@ class EngineReplay:
         runtime: The processor side.
         clock_mhz: The logic's clock.
         lanes: Bytes per beat of the DMA streams.
-        drain_cycles, stall_cycles: The replay settings (`rfc.sim`).
+        settings: The replay settings.
         busy: The logic's ``busy`` bits, or None when its top level has none.
     """
 
-    # Keeps its arguments and the replay's state: assignments alike in shape only with others.
+    # Keeps its collaborators and the replay's state: like the converters' defaults in shape only.
     def __init__(
         self,
         engine: StreamEngine,
         runtime: Runtime,
         clock_mhz: float,
         lanes: int,
-        drain_cycles: int,
-        stall_cycles: int,
+        settings: ReplaySettings,
         busy: BusyWatch | None = None,
     ) -> None:
         self.engine = engine
         self.runtime = runtime
         self.clock_mhz = clock_mhz
-        self.drain_cycles = drain_cycles
+        self.settings = settings
         self.cycle = RESET_CYCLES
         self.stamp = 0
         self.published: list[Published] = []
         self.sending: Chunk | None = None
         self.receiving = False
-        self.watch = StallWatch(stall_cycles, lanes, largest_output(runtime))
+        self.watch = StallWatch(settings.stall_cycles, lanes, largest_output(runtime))
         self.answer = AnswerWait(lanes)
         self.busy = busy
         self.working = False
@@ -217,9 +217,7 @@ class EngineReplay:
             for route in routes
         )
 
-    def replay(
-        self, messages: Iterable[BagMessage], progress: Callable[[int], None] | None = None
-    ) -> list[Published]:
+    def replay(self, messages: Iterable[BagMessage]) -> list[Published]:
         """Offer every message at its recorded time, run until idle, finish the account.
 
         Raises:
@@ -235,8 +233,8 @@ class EngineReplay:
                 message.topic, message.data, self.stamp, self.cycle
             )
             self._send_next()
-            if progress is not None and count % 16 == 0:
-                progress(count)
+            if self.settings.progress is not None and count % 16 == 0:
+                self.settings.progress(count)
         self.run_until(1 << 62)
         self.runtime.finish()
         return self.published
@@ -244,7 +242,7 @@ class EngineReplay:
     def run_until(self, due: int) -> None:
         """Run to cycle `due`, or less when the system falls idle before it."""
         while self.cycle < due:
-            received = self._run(min(self.drain_cycles, due - self.cycle))
+            received = self._run(min(self.settings.drain_cycles, due - self.cycle))
             busy = self._busy()
             # a whole quiet window after the logic's busy bits fell
             settled = not self.working
@@ -348,11 +346,7 @@ def simulate_with_engine(
     top: VerilogTop,
     *,
     clock_mhz: float,
-    drain_cycles: int,
-    stall_cycles: int,
-    seed: int,
-    progress: Callable[[int], None] | None = None,
-    warnings: list[str] | None = None,
+    settings: ReplaySettings,
 ) -> list[Published]:
     """Replay `messages` through the Verilog of `top` in the stream engine.
 
@@ -361,7 +355,7 @@ def simulate_with_engine(
         messages: Input messages in time order, on the spec's topics.
         top: The logic's top level with its ``verilog`` files in compile order.
         clock_mhz: The logic's clock (message arrivals convert to its cycles).
-        drain_cycles, stall_cycles, seed, progress, warnings: The replay settings (`rfc.sim`).
+        settings: The replay settings.
 
     Returns:
         Everything published, in order.
@@ -373,16 +367,16 @@ def simulate_with_engine(
     """
     binary, registers = build_engine(top, runtime.plan.subscriber_names)
     lanes = top.bus_width // 8
-    engine = StreamEngine(binary, seed)
+    engine = StreamEngine(binary, settings.seed)
     try:
         names = _busy_names(top)
-        busy = BusyWatch(names, stall_cycles) if names else None
-        loop = EngineReplay(engine, runtime, clock_mhz, lanes, drain_cycles, stall_cycles, busy)
-        published = loop.replay(messages, progress)
+        busy = BusyWatch(names, settings.stall_cycles) if names else None
+        loop = EngineReplay(engine, runtime, clock_mhz, lanes, settings, busy)
+        published = loop.replay(messages)
         values = engine.finish()[: len(registers)]
     finally:
         engine.close()
-    if busy is not None and warnings is not None:
-        warnings += busy.warnings
+    if busy is not None and settings.warnings is not None:
+        settings.warnings.extend(busy.warnings)
     runtime.logic_drops(dict(zip(registers.values(), values, strict=True)))
     return published

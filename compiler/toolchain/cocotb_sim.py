@@ -233,6 +233,7 @@ def _run_tests(
     results.unlink(missing_ok=True)
     # cocotb exits on failure under pytest; the results file says why.
     with environment, contextlib.suppress(SystemExit):
+        # cocotb's runner takes keywords: like derive_infrastructure's SchedulerInput in shape only.
         runner.test(
             test_module=tests.module,
             hdl_toplevel=tests.toplevel,

@@ -12,6 +12,7 @@ from rfc.runtime.core import Runtime
 from rfc.runtime.loopback import PassThroughLogic
 from rfc.runtime.replay import replay
 from rfc.sim.myhdl_sim import simulate_with_myhdl
+from rfc.sim.settings import ReplaySettings
 from tests.runtime.echo_top import echo_logic, route_table
 from tests.runtime.support import compiled, pose_messages
 
@@ -29,8 +30,7 @@ def test_myhdl_simulation_of_the_logic_equals_the_python_model(tmp_path, width, 
         runtime,
         messages,
         clock_mhz=100.0,
-        drain_cycles=40,
-        seed=width + cut,
+        settings=ReplaySettings(drain_cycles=40, seed=width + cut),
     )
     assert [(p.topic, p.data) for p in published] == [(e.topic, e.data) for e in expected]
     assert runtime.account.from_logic == {"Pass_out0_pub": 4, "Pose_pub": 4}
@@ -48,7 +48,23 @@ def test_messages_closer_than_the_logic_needs_contend_in_the_queues(tmp_path):
         runtime,
         burst,
         clock_mhz=100.0,
-        drain_cycles=40,
+        settings=ReplaySettings(drain_cycles=40),
     )
     assert runtime.account.dropped == {("Pose_sub", "overflow"): 4}
     assert len(published) == 10
+
+
+def test_progress_is_told_every_message_offered_in_order(tmp_path):
+    design = compiled(tmp_path, "pose_mixed.yaml")
+    plan = DesignPlan(design)
+    messages = pose_messages(plan.types, 5)
+    told: list[int] = []
+    simulate_with_myhdl(
+        partial(echo_logic, routes=route_table(design), cut_beats=0),
+        64,
+        Runtime(plan),
+        messages,
+        clock_mhz=100.0,
+        settings=ReplaySettings(drain_cycles=40, progress=told.append),
+    )
+    assert told == list(range(1, len(messages) + 1))

@@ -25,6 +25,7 @@ from rfc.messages.rosbags_adapter import message_types, read_bag, write_bag
 from rfc.runtime.core import QueueConfig, Runtime
 from rfc.runtime.stall import DEFAULT_STALL_CYCLES
 from rfc.sim.hardware import simulate_with_ghdl
+from rfc.sim.settings import ReplaySettings
 from rfc.sim.stream_engine import simulate_with_engine
 from tests.examples.multi_type.test_system import SPEC, TOPICS, image, scan, twist
 
@@ -54,9 +55,16 @@ def test_the_engine_replays_a_random_bag_as_the_cocotb_harness_does(tmp_path, sp
     design = compile_spec(SPEC)
     top = simulation_top(design, tmp_path / "hdl")
     topics = {topic: topic for topic in TOPICS}
-    options = {"drain_cycles": 200, "stall_cycles": DEFAULT_STALL_CYCLES, "seed": 3}
+    settings = ReplaySettings(drain_cycles=200, stall_cycles=DEFAULT_STALL_CYCLES, seed=3)
     harness = simulate_with_ghdl(
-        design, bag, topics, top, tmp_path, queues=QueueConfig(), simulator="verilator", **options
+        design,
+        bag,
+        topics,
+        top,
+        tmp_path,
+        queues=QueueConfig(),
+        simulator="verilator",
+        settings=settings,
     )
     runtime = Runtime(DesignPlan(design), QueueConfig())
     types = message_types("ros2")
@@ -65,7 +73,7 @@ def test_the_engine_replays_a_random_bag_as_the_cocotb_harness_does(tmp_path, sp
         read_bag(bag, types, topics),
         top,
         clock_mhz=design.project.clock_mhz,
-        **options,
+        settings=settings,
     )
     assert [(p.topic, p.data) for p in published] == [(p.topic, p.data) for p in harness.published]
     assert runtime.account.to_json() == harness.account.to_json()
@@ -74,5 +82,5 @@ def test_the_engine_replays_a_random_bag_as_the_cocotb_harness_does(tmp_path, sp
     assert sorted((p.topic, p.data) for p in published) == sorted(
         (renamed[t], data) for t, _, data in messages
     )
-    if spacing > 1000 * options["drain_cycles"] / design.project.clock_mhz:
+    if spacing > 1000 * settings.drain_cycles / design.project.clock_mhz:
         assert published == harness.published  # the stamps too

@@ -1,10 +1,12 @@
 """The shared engine through the 4x4 transform product: model against NumPy and exact sums,
 the MyHDL block and its VHDL (flat ports, GHDL) against the model; a float64 engine with every
-unit, in MyHDL against the model and mapped by Yosys against the clock."""
+unit, in MyHDL against the model and mapped by Yosys against the clock; the result bits the
+output chain leaves out against Python's float64."""
 
 from __future__ import annotations
 
 import math
+import struct
 from fractions import Fraction
 
 import numpy as np
@@ -24,7 +26,7 @@ from rfc.lib.arith.engine import (
     run,
     schedule,
 )
-from rfc.lib.arith.engine_hdl import engine
+from rfc.lib.arith.engine_hdl import engine, zero_result_bits
 from rfc.lib.arith.transform import transform_multiply, transform_program
 from rfc.lib.fixed import FixedFormat, bits_to_float, float_to_bits
 from rfc.toolchain import convert_myhdl
@@ -229,3 +231,25 @@ def test_a_float_engine_meets_100_mhz_with_margin(tmp_path):
     top = flat_top(engine, ENGINE_ORDER, {"inputs": 3, "outputs": 3}, [rotation_program()])
     files = convert_myhdl(top(**flat), "engine", tmp_path)
     assert map_xc7(files[-1], "engine", tmp_path).arrival_ps <= 4800
+
+
+@given(st.data())
+def test_the_result_bits_the_output_chain_leaves_out_are_zero_in_every_float64(data):
+    # the output chain carries only a result's high bits and appends zeros: those must be zero
+    # in Python's own float64 of every value of the format, its extremes included
+    width = data.draw(st.integers(2, 64))
+    fmt = FixedFormat(width, data.draw(st.integers(0, width - 1)))
+    builder = ProgramBuilder(fmt, float_io=True)
+    builder.store(builder.load())
+    zeros = zero_result_bits(builder.build())
+    raws = [
+        fmt.min_raw,
+        fmt.max_raw,
+        -1,
+        1,
+        *data.draw(st.lists(st.integers(fmt.min_raw, fmt.max_raw))),
+    ]
+    for raw in raws:
+        (bits,) = struct.unpack("<Q", struct.pack("<d", float(Fraction(raw, 1 << fmt.frac_bits))))
+        assert bits & ((1 << zeros) - 1) == 0
+    assert zeros == max(53 - width, 0)

@@ -25,7 +25,7 @@ MEETS_CLOCK = (
     "first_accelerator/mirror.yaml",
     "multi_type/MultiType.yaml",
     "image_pipeline/ImagePipeline.yaml",
-    # a cold estimate of its core takes about 12 minutes of CPU (docs/performance.md): the
+    # a cold estimate of its logic takes about 4 minutes of CPU (docs/performance.md): the
     # module cache shared with earlier runs makes it seconds after the first
     "franka_fk/franka_fk.yaml",
 )

@@ -26,15 +26,16 @@ from __future__ import annotations
 from myhdl import ConcatSignal, Constant, Signal, always_comb, always_seq, block, intbv
 
 from rfc.lib.axi_stream import AxiStream
+from rfc.lib.converters.bools import bool_bytes
 from rfc.lib.converters.frame_buffer import frame_buffer
 from rfc.lib.converters.frame_length import frame_length_circuit
 from rfc.lib.converters.packer import byte_packer
-from rfc.lib.converters.ports import COUNTER_BITS, Side, count_bits, dma_ports, ports_of
+from rfc.lib.converters.ports import COUNTER_BITS, Side, dma_ports, ports_of
 from rfc.lib.converters.sources import payload_bases, payload_sources, record_sources
 from rfc.lib.converters.steps import End, Loop, Next, Payload, Plan, Record
 from rfc.lib.converters.tables import Kind, tables
 from rfc.lib.converters.walker import Walk, step_walker
-from rfc.lib.converters.wiring import LoopControl, bits_of, follow, loop_counters, select_bit
+from rfc.lib.converters.wiring import bits_of, follow, select_bit
 from rfc.lib.slice import register_slice
 from rfc.lib.types import Instances, SignalLike
 from rfc.messages.codec import default_values, encode
@@ -82,24 +83,24 @@ def rfc_publisher(
     bases = payload_bases(plan)
     owner_rom = _owners(plan)
     length_names, length_rom = _length_inputs(plan)
-    kind_rom, shift_rom, term_rom, bool_rom = t.kind, t.shift, t.terminator, t.is_bool
+    kind_rom = t.kind
 
     walk = Walk.of(plan)
     pc, entered, rem, piece = walk.pc, walk.entered, walk.rem, walk.piece
     rc, size, chars, padding, element_end = walk.proposal()
-    go, skip, rem_start = walk.decision()
+    go, skip = walk.go, walk.skip
     active, active_n = (Signal(bool(0)) for _ in range(2))
     give = Signal(intbv(0, min=0, max=width + 1))
     data = Signal(intbv(0)[8 * width :])
     room, idle = Signal(bool(0)), Signal(bool(0))
     start, flush, commit = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
-    load_loop, next_element = Signal(bool(0)), Signal(bool(0))
     count = Signal(intbv(0)[32:])
     record_lanes = [Signal(intbv(0)[8:]) for _ in range(width)]
     record_bytes = ConcatSignal(*reversed(record_lanes)) if width > 1 else record_lanes[0]
     piece_index = Signal(intbv(0, min=0, max=max(2, max(bases) + max(t.pieces) + 1)))
     payload_lanes = [Signal(intbv(0)[8:]) for _ in range(width)]
     payload_bytes = ConcatSignal(*reversed(payload_lanes)) if width > 1 else payload_lanes[0]
+    elements = Signal(intbv(0)[8 * width :])
     fixed = plan.layout.fixed_size
     if fixed is None and not length_names:  # every string and sequence stays empty: one size
         fixed = len(encode(plan.layout, default_values(plan.layout)))
@@ -150,17 +151,10 @@ def rfc_publisher(
     streams = [plan.payload(at) for at in t.streams]
     stream_valid = Signal(bool(0)) if streams else Constant(bool(0))
     stream_take = Signal(bool(0))
-    loop_counts = [Signal(intbv(0)[count_bits(plan.loop(at).maximum) :]) for at in t.loops]
-    loop_more = [Signal(bool(0)) for _ in t.loops]
-    more = Signal(bool(0)) if t.loops else Constant(bool(0))
 
     @always_comb
     def control() -> None:
         kind = kind_rom[pc]
-        shift = shift_rom[pc]
-        term = term_rom[pc]
-        bools = bool_rom[pc]
-        boolean = bools == 1
         slot = length_rom[pc]
         payload_base = bases[pc]
 
@@ -170,15 +164,12 @@ def rfc_publisher(
         start.next = False
         flush.next = False
         commit.next = False
-        load_loop.next = False
-        next_element.next = False
         stream_take.next = False
         msg_ready.next = False
         drain.next = False
         faulty_n.next = faulty
         go.next = False
         skip.next = False
-        rem_start.next = 0
         piece_index.next = payload_base + piece
         value = intbv(0)[32:]
         for bit in range(32):
@@ -203,10 +194,7 @@ def rfc_publisher(
                     if not padding:
                         data.next = record_bytes
             elif kind == Kind.PAYLOAD:
-                if not entered:
-                    go.next = True
-                    rem_start.next = (value << shift) + term
-                elif rem == 0:
+                if not entered or rem == 0:
                     go.next = True
                 elif padding:
                     if room:
@@ -221,25 +209,14 @@ def rfc_publisher(
                     masked = intbv(0)[8 * width :]
                     for lane in range(width):
                         if lane < chars and not ended:
-                            nonzero = False
                             for bit in range(8):
-                                if payload_bytes[8 * lane + bit]:
-                                    nonzero = True
-                            for bit in range(8):
-                                if boolean:
-                                    masked[8 * lane + bit] = bit == 0 and nonzero
-                                else:
-                                    masked[8 * lane + bit] = payload_bytes[8 * lane + bit]
+                                masked[8 * lane + bit] = elements[8 * lane + bit]
                     data.next = masked
             elif kind == Kind.LOOP:
                 go.next = True
-                if value == 0:
-                    skip.next = True
-                else:
-                    load_loop.next = True
+                skip.next = value == 0
             elif kind == Kind.NEXT:
                 go.next = True
-                next_element.next = True
             else:  # the End: the message is taken once its frame is out
                 done = not streaming and not buffered
                 if streaming:
@@ -273,21 +250,20 @@ def rfc_publisher(
             if msg_ready and faulty_n:
                 mismatches.next = mismatches + 1
 
-    walker = step_walker(plan, clk, rst, walk, more)
+    walker = step_walker(plan, clk, rst, walk, count)
     blocks = [walker, control, registers, record_sources(plan, ports, rc, record_lanes), *skid]
     if len(channel_valids) > 1:
         blocks.append(select_bit(bits_of(channel_valids), owner_rom, pc, owner_valid))
-    blocks.append(channel_readies(plan, ports, pc, next_element))
+    blocks.append(channel_readies(plan, ports, pc, walk.next_element))
     if streams:
         blocks.append(payload_sources(plan, ports, piece_index, payload_lanes))
+        blocks.append(bool_bytes(plan, pc, payload_bytes, elements))
         blocks.append(stream_handshakes(plan, ports, pc, stream_take, stream_valid, drain))
     if streaming:
         blocks.append(follow(mismatches, ports["error_count"]))
     if held:
         blocks.append(select_bit(bits_of(empties), tuple(held_table), pc, gone))
         blocks.append(anything_left(bits_of(empties[1:]), leftover))
-    loop_control = LoopControl(clk, rst, pc, count, load_loop, next_element)
-    blocks.append(loop_counters(plan, loop_control, loop_counts, loop_more, more))
     if fixed is None and not buffered:
         counts = {name: ports[name] for name in length_names}
         blocks.append(frame_length_circuit(plan, counts, frame_total))

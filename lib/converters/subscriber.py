@@ -23,6 +23,7 @@ from __future__ import annotations
 from myhdl import Constant, Signal, always_comb, always_seq, block, concat, intbv
 
 from rfc.lib.axi_stream import AxiStream
+from rfc.lib.converters.bools import bool_bytes
 from rfc.lib.converters.fields import field_captures
 from rfc.lib.converters.malformed import Reason
 from rfc.lib.converters.outputs import element_handshakes, length_registers, stream_outputs
@@ -38,7 +39,7 @@ from rfc.lib.converters.steps import Plan
 from rfc.lib.converters.tables import Kind, tables
 from rfc.lib.converters.walker import Walk, step_walker
 from rfc.lib.converters.window import byte_window
-from rfc.lib.converters.wiring import LoopControl, bits_of, loop_counters, select_bit
+from rfc.lib.converters.wiring import bits_of, select_bit
 from rfc.lib.types import Instances, SignalLike
 
 TRUNCATED, MAXIMUM, TRAILING, ENCODING = (
@@ -92,7 +93,7 @@ def rfc_subscriber(plan: Plan, **ports: SignalLike) -> Instances:
     walk = Walk.of(plan)
     pc, entered, rem, piece, gap = walk.pc, walk.entered, walk.rem, walk.piece, walk.gap
     rc, size, chars, padding, element_end = walk.proposal()
-    go, skip, rem_start = walk.decision()
+    go, skip = walk.go, walk.skip
     last4, last4_n = (Signal(intbv(0)[32:]) for _ in range(2))
     abort, abort_n = (Signal(bool(0)) for _ in range(2))
     cause, cause_n = (Signal(intbv(0)[REASON_BITS:]) for _ in range(2))
@@ -108,9 +109,8 @@ def rfc_subscriber(plan: Plan, **ports: SignalLike) -> Instances:
     capture = Signal(bool(0))
     lengths = Signal(bool(0))
     count = Signal(intbv(0)[count_width:])
-    load_loop = Signal(bool(0))
-    next_element = Signal(bool(0))
     data = Signal(intbv(0)[8 * width :])
+    elements = Signal(intbv(0)[8 * width :])  # `data` with bools made 0 or 1
     finished = Signal(bool(0))
     failed = Signal(bool(0))
     header = Signal(intbv(0)[16:]) if cdr else Constant(intbv(CDR_ENCAPSULATION)[16:])
@@ -118,15 +118,12 @@ def rfc_subscriber(plan: Plan, **ports: SignalLike) -> Instances:
     # ---- handshakes in from the consumer, selected by the current step
     channel_ready = Signal(bool(1)) if len(plan.channels) > 1 else Constant(bool(1))
     o_ready = Signal(bool(0)) if t.streams else Constant(bool(0))
-    loop_counts = [Signal(intbv(0)[count_bits(plan.loop(pc).maximum) :]) for pc in t.loops]
-    loop_more = [Signal(bool(0)) for _ in t.loops]
-    more = Signal(bool(0)) if t.loops else Constant(bool(0))
     readies = [
         ports[f"{c.name}_ready"] if c.index and c.selected else Constant(bool(1))
         for c in plan.channels
     ]
-    kind_rom, shift_rom, term_rom, max_rom = t.kind, t.shift, t.terminator, t.maximum
-    stream_rom, selected_rom, pieces_rom, bool_rom = t.stream, t.selected, t.pieces, t.is_bool
+    kind_rom, term_rom, max_rom = t.kind, t.terminator, t.maximum
+    stream_rom, selected_rom, pieces_rom = t.stream, t.selected, t.pieces
 
     @always_comb
     def zero_on_abort() -> None:
@@ -138,7 +135,6 @@ def rfc_subscriber(plan: Plan, **ports: SignalLike) -> Instances:
     @always_comb
     def control() -> None:
         kind = kind_rom[pc]
-        shift = shift_rom[pc]
         term = term_rom[pc]
         terminated = term == 1
         maximum = max_rom[pc]
@@ -146,8 +142,6 @@ def rfc_subscriber(plan: Plan, **ports: SignalLike) -> Instances:
         chosen = selected_rom[pc]
         selected = chosen == 1
         parts = pieces_rom[pc]
-        bools = bool_rom[pc]
-        boolean = bools == 1
 
         moves = False  # the current step goes this cycle (`step_walker`'s go)
         abort_n.next = abort
@@ -160,12 +154,9 @@ def rfc_subscriber(plan: Plan, **ports: SignalLike) -> Instances:
         take.next = 0
         capture.next = False
         lengths.next = False
-        load_loop.next = False
-        next_element.next = False
         release.next = False
         finished.next = False
         skip.next = False
-        rem_start.next = 0
         count.next = 0
         length = intbv(0)[32:]
         length[:] = last4
@@ -193,12 +184,11 @@ def rfc_subscriber(plan: Plan, **ports: SignalLike) -> Instances:
                     why = MAXIMUM
                     if terminated and length == 0:
                         why = ENCODING
+                    skip.next = True
                 elif terminated:
                     count.next = length - 1
-                    rem_start.next = length
                 else:
                     count.next = length
-                    rem_start.next = length << shift
             elif rem == 0:
                 moves = True
             elif padding:
@@ -225,15 +215,8 @@ def rfc_subscriber(plan: Plan, **ports: SignalLike) -> Instances:
                         assembled[:] = o_data
                         for lane in range(out_bytes):
                             if lane // width == piece:
-                                nonzero = False
                                 for bit in range(8):
-                                    if data[8 * (lane % width) + bit]:
-                                        nonzero = True
-                                for bit in range(8):
-                                    if boolean:
-                                        assembled[8 * lane + bit] = bit == 0 and nonzero
-                                    else:
-                                        assembled[8 * lane + bit] = data[8 * (lane % width) + bit]
+                                    assembled[8 * lane + bit] = elements[8 * (lane % width) + bit]
                         o_data_n.next = assembled
                         o_stream_n.next = stream
                         if element_end:
@@ -257,11 +240,8 @@ def rfc_subscriber(plan: Plan, **ports: SignalLike) -> Instances:
                 skip.next = True
             else:
                 count.next = length
-                load_loop.next = True
         elif kind == Kind.NEXT:
-            if channel_ready and not o_valid:
-                moves = True
-                next_element.next = True
+            moves = channel_ready and not o_valid
         elif not (ended and avail == 0):
             drained = width
             if avail < width:
@@ -338,14 +318,13 @@ def rfc_subscriber(plan: Plan, **ports: SignalLike) -> Instances:
         msg_error.next = failed
         error_count.next = errors
 
-    walker = step_walker(plan, clk, rst, walk, more)
+    walker = step_walker(plan, clk, rst, walk, count)
     blocks = [window, walker, zero_on_abort, control, registers, verdict, message_handshake]
+    blocks.append(bool_bytes(plan, pc, data, elements))
     if len(readies) > 1:
         blocks.append(select_bit(bits_of(readies), t.channel, pc, channel_ready))
     blocks.append(field_captures(plan, ports, clk, rst, capture, rc, data, header))
     blocks.append(length_registers(plan, ports, clk, rst, lengths, pc, count))
-    loop_control = LoopControl(clk, rst, pc, count, load_loop, next_element)
-    blocks.append(loop_counters(plan, loop_control, loop_counts, loop_more, more))
-    blocks.append(element_handshakes(plan, ports, pc, o_valid, loop_counts))
+    blocks.append(element_handshakes(plan, ports, pc, o_valid, list(walk.loop_counts)))
     blocks.append(stream_outputs(plan, ports, o_data, o_keep, o_last, o_valid, o_stream, o_ready))
     return blocks

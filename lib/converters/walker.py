@@ -14,11 +14,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from myhdl import Signal, always_comb, always_seq, block, intbv
+from myhdl import Constant, Signal, always_comb, always_seq, block, intbv
 
 from rfc.lib.converters.ports import count_bits
 from rfc.lib.converters.steps import Plan
 from rfc.lib.converters.tables import Kind, tables
+from rfc.lib.converters.wiring import LoopControl, loop_counters
 from rfc.lib.types import Instances, SignalLike
 
 
@@ -40,8 +41,10 @@ class Walk:
         padding: The `size` bytes are an alignment pad (no field or element bytes).
         element_end: The payload chunk ends an element, or the payload.
         go: The converter lets the current step go this cycle.
-        skip: Loop: it has no elements; the walk goes past its Next.
-        rem_start: Payload not yet entered: the bytes it holds.
+        skip: The step has nothing to walk: a Loop no elements (the walk goes past its Next),
+            a payload no bytes (the subscriber after an error).
+        next_element: Next: an element is done (the walk goes on this cycle).
+        loop_counts: Per Loop step, in loop order: the elements of it still to walk.
     """
 
     pc: SignalLike
@@ -57,7 +60,8 @@ class Walk:
     element_end: SignalLike
     go: SignalLike
     skip: SignalLike
-    rem_start: SignalLike
+    next_element: SignalLike
+    loop_counts: tuple[SignalLike, ...]
 
     @classmethod
     def of(cls, plan: Plan) -> Walk:
@@ -68,13 +72,12 @@ class Walk:
         # Bytes from the frame's first byte to the next 8-byte boundary of the CDR payload.
         start_gap = 4 if plan.is_cdr else 0
         size, chars = (Signal(intbv(0, min=0, max=plan.width + 1)) for _ in range(2))
-        entered, padding, element_end, go, skip = (Signal(bool(0)) for _ in range(5))
-        rem, rem_start = (Signal(intbv(0)[rem_bits:]) for _ in range(2))
+        entered, padding, element_end, go, skip, next_element = (Signal(bool(0)) for _ in range(6))
         return cls(
             pc=Signal(intbv(0, min=0, max=2**pc_bits)),
             chunk=Signal(intbv(0, min=0, max=max(t.chunks) + 1)),
             entered=entered,
-            rem=rem,
+            rem=Signal(intbv(0)[rem_bits:]),
             piece=Signal(intbv(0, min=0, max=max(t.pieces) + 1)),
             gap=Signal(intbv(start_gap)[3:]),
             rc=Signal(intbv(0, min=0, max=t.record_chunks + max(t.chunks) + 1)),
@@ -84,7 +87,10 @@ class Walk:
             element_end=element_end,
             go=go,
             skip=skip,
-            rem_start=rem_start,
+            next_element=next_element,
+            loop_counts=tuple(
+                Signal(intbv(0)[count_bits(plan.loop(at).maximum) :]) for at in t.loops
+            ),
         )
 
     def position(self) -> tuple[SignalLike, ...]:
@@ -95,20 +101,18 @@ class Walk:
         """rc, size, chars, padding, element_end: to bind to a block's local names."""
         return self.rc, self.size, self.chars, self.padding, self.element_end
 
-    def decision(self) -> tuple[SignalLike, ...]:
-        """go, skip, rem_start: to bind to a block's local names."""
-        return self.go, self.skip, self.rem_start
-
 
 @block
 def step_walker(
-    plan: Plan, clk: SignalLike, rst: SignalLike, walk: Walk, more: SignalLike
+    plan: Plan, clk: SignalLike, rst: SignalLike, walk: Walk, count: SignalLike
 ) -> Instances:
     """Walk `plan`, one step's move a cycle the converter lets go (`Walk.go`).
 
-    A record chunk or pad, or a payload chunk or pad, moves `Walk.size` bytes; a payload not
-    yet entered takes `Walk.rem_start` bytes; a Loop goes past its element when `Walk.skip`,
-    else into it; a Next goes back for the next element while `more`; an End starts over.
+    `count` is the current step's characters or elements, as the converter knows them. A
+    record chunk or pad, or a payload chunk or pad, moves `Walk.size` bytes; a payload not yet
+    entered takes the bytes of `count` elements (and a CDR string's NUL), none when
+    `Walk.skip`; a Loop goes past its element when `Walk.skip`, else into it for `count`
+    elements; a Next goes back while elements remain; an End starts over.
     """
     t = tables(plan)
     width = plan.width
@@ -117,7 +121,12 @@ def step_walker(
     start_gap = 4 if plan.is_cdr else 0
     pc, chunk, entered, rem, piece, gap = walk.position()
     rc, size, chars, padding, element_end = walk.proposal()
-    go, skip, rem_start = walk.decision()
+    go, skip = walk.go, walk.skip
+    next_element = walk.next_element
+    load_loop = Signal(bool(0))
+    entry = Signal(intbv(0)[len(rem) :])  # the bytes the payload at pc holds: count's, a NUL
+    loop_more = [Signal(bool(0)) for _ in t.loops]
+    more = Signal(bool(0)) if t.loops else Constant(bool(0))
     kind_rom, align_rom, chunks_rom, last_rom, base_rom = (
         t.kind,
         t.align_mask,
@@ -125,7 +134,8 @@ def step_walker(
         t.last_size,
         t.base,
     )
-    term_rom, pieces_rom, element_rom, target_rom = t.terminator, t.pieces, t.element_mask, t.target
+    term_rom, pieces_rom, element_rom = t.terminator, t.pieces, t.element_mask
+    shift_rom, target_rom = t.shift, t.target
 
     @always_comb
     def propose() -> None:
@@ -134,13 +144,15 @@ def step_walker(
         chunks = chunks_rom[pc]
         last_size = last_rom[pc]
         base = base_rom[pc]
+        shift = shift_rom[pc]
         term = term_rom[pc]
         parts = pieces_rom[pc]
         element = element_rom[pc]
 
         rc.next = base + chunk
+        entry.next = 0
         amount = 0
-        count = 0
+        content = 0
         is_pad = False
         pad = intbv(0)[3:]
         if kind == Kind.RECORD:
@@ -154,7 +166,9 @@ def step_walker(
                 amount = last_size
             else:
                 amount = width
-        elif kind == Kind.PAYLOAD and entered and rem != 0:
+        elif kind == Kind.PAYLOAD and not entered:
+            entry.next = (count << shift) + term
+        elif kind == Kind.PAYLOAD and rem != 0:
             pad[:] = gap & element
             if pad != 0 and piece == 0:
                 is_pad = True
@@ -165,11 +179,11 @@ def step_walker(
                 amount = width
                 if rem < width:
                     amount = int(rem)
-                count = amount
+                content = amount
                 if term == 1 and rem <= width:
-                    count = amount - 1
+                    content = amount - 1
         size.next = amount
-        chars.next = count
+        chars.next = content
         padding.next = is_pad
         element_end.next = piece == parts - 1 or rem <= width
 
@@ -194,7 +208,10 @@ def step_walker(
                 if not entered:
                     entered.next = True
                     piece.next = 0
-                    rem.next = rem_start
+                    if skip:
+                        rem.next = 0
+                    else:
+                        rem.next = entry
                 elif rem == 0:
                     pc.next = pc + 1
                     entered.next = False
@@ -223,4 +240,12 @@ def step_walker(
         else:
             gap.next = (int(gap) + 8 - moved) % 8
 
-    return propose, walk_on
+    @always_comb
+    def loop_events() -> None:
+        kind = kind_rom[pc]
+        load_loop.next = kind == Kind.LOOP and go and not skip
+        next_element.next = kind == Kind.NEXT and go
+
+    loop_control = LoopControl(clk, rst, pc, count, load_loop, next_element)
+    loops = loop_counters(plan, loop_control, list(walk.loop_counts), loop_more, more)
+    return propose, walk_on, loop_events, loops

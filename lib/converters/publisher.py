@@ -158,6 +158,7 @@ def rfc_publisher(
         slot = length_rom[pc]
         payload_base = bases[pc]
 
+        # each output idle first, as every combinational process (the subscriber's) starts
         active_n.next = active
         give.next = 0
         data.next = 0
@@ -319,14 +320,12 @@ def _widened(signal: SignalLike) -> list[SignalLike]:
 
 
 @block
-def channel_ready(
-    next_element: SignalLike, pc: SignalLike, at: int, ready: SignalLike
-) -> Instances:
-    """Acknowledge an element when its Next step (`at`) is done."""
+def step_ready(done: SignalLike, pc: SignalLike, at: int, ready: SignalLike) -> Instances:
+    """Acknowledge a channel's element or a sub-stream's beat when step `at` is `done` with it."""
 
     @always_comb
     def acknowledge() -> None:
-        ready.next = next_element and pc == at
+        ready.next = done and pc == at
 
     return acknowledge
 
@@ -335,24 +334,13 @@ def channel_ready(
 def channel_readies(
     plan: Plan, ports: dict[str, SignalLike], pc: SignalLike, next_element: SignalLike
 ) -> Instances:
-    """One `channel_ready` per selected element channel."""
+    """One `step_ready` per selected element channel: at its Next step."""
     blocks = []
     for at, step in enumerate(plan.steps):
         if isinstance(step, Next) and plan.channels[step.channel].selected:
             ready = ports[f"{plan.channels[step.channel].name}_ready"]
-            blocks.append(channel_ready(next_element, pc, at, ready))
+            blocks.append(step_ready(next_element, pc, at, ready))
     return blocks
-
-
-@block
-def stream_ready(take: SignalLike, pc: SignalLike, at: int, ready: SignalLike) -> Instances:
-    """Take a sub-stream beat when the payload step `at` has used all of it."""
-
-    @always_comb
-    def acknowledge() -> None:
-        ready.next = take and pc == at
-
-    return acknowledge
 
 
 # Compares with all ones where the manager's `spread_bit` drives them: another circuit.
@@ -368,11 +356,12 @@ def anything_left(empties: SignalLike, left: SignalLike) -> Instances:
     return check
 
 
+# Shaped like the guards' `buffer_addresses`: there an address clamp, here a handshake.
 @block
 def draining_ready(
     take: SignalLike, pc: SignalLike, at: int, drain: SignalLike, ready: SignalLike
 ) -> Instances:
-    """`stream_ready`, and every beat while `drain`: the streamed-through stream's extra beats."""
+    """`step_ready`, and every beat while `drain`: the streamed-through stream's extra beats."""
 
     @always_comb
     def acknowledge() -> None:
@@ -402,7 +391,7 @@ def stream_handshakes(
         if plan.streamed_last is not None and stream.channel == 0:
             blocks.append(draining_ready(take, pc, at, drain, ready))
         else:
-            blocks.append(stream_ready(take, pc, at, ready))
+            blocks.append(step_ready(take, pc, at, ready))
         valids.append(ports[f"{stream.stream}_tvalid"])
         table[at] = index
     if len(valids) > 1:

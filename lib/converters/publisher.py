@@ -158,7 +158,7 @@ def rfc_publisher(
         slot = length_rom[pc]
         payload_base = bases[pc]
 
-        # each output idle first, as every combinational process (the subscriber's) starts
+        # Each output idle first: the subscriber's control starts alike, with other outputs.
         active_n.next = active
         give.next = 0
         data.next = 0

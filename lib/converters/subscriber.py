@@ -144,7 +144,7 @@ def rfc_subscriber(plan: Plan, **ports: SignalLike) -> Instances:
         parts = pieces_rom[pc]
 
         moves = False  # the current step goes this cycle (`step_walker`'s go)
-        # each output idle first, as every combinational process (the publisher's) starts
+        # Each output idle first: shaped like the publisher's and stream_engine's set-ups only.
         abort_n.next = abort
         trail_n.next = trail
         o_data_n.next = o_data

@@ -6,8 +6,9 @@ element wider than the bus, and the frame position modulo 8 (``gap``) that CDR a
 from. The walker proposes the bytes the current step moves (``size``: a record chunk, an
 alignment pad or a payload chunk) and moves on when the converter says the step goes this
 cycle (``go``): the publisher when the packer has room and the stream its beat, the subscriber
-when the byte window holds the bytes. What the bytes are, and what a Loop or End waits for,
-stays the converter's.
+when the byte window holds the bytes. The walker also counts a sequence's elements (its
+loop counters); what the bytes are, the lengths and counts, and what a Next or an End waits
+for stay the converter's.
 """
 
 from __future__ import annotations
@@ -21,6 +22,11 @@ from rfc.lib.converters.steps import Plan
 from rfc.lib.converters.tables import Kind, tables
 from rfc.lib.converters.wiring import LoopControl, loop_counters
 from rfc.lib.types import Instances, SignalLike
+
+
+def _start_gap(plan: Plan) -> int:
+    """Bytes from the frame's first byte to the next 8-byte boundary of the CDR payload."""
+    return 4 if plan.is_cdr else 0
 
 
 @dataclass(frozen=True)
@@ -69,8 +75,6 @@ class Walk:
         t = tables(plan)
         pc_bits = max(1, (len(plan.steps) - 1).bit_length())
         rem_bits = count_bits(max([1, *t.maximum])) + 4
-        # Bytes from the frame's first byte to the next 8-byte boundary of the CDR payload.
-        start_gap = 4 if plan.is_cdr else 0
         size, chars = (Signal(intbv(0, min=0, max=plan.width + 1)) for _ in range(2))
         entered, padding, element_end, go, skip, next_element = (Signal(bool(0)) for _ in range(6))
         return cls(
@@ -79,7 +83,7 @@ class Walk:
             entered=entered,
             rem=Signal(intbv(0)[rem_bits:]),
             piece=Signal(intbv(0, min=0, max=max(t.pieces) + 1)),
-            gap=Signal(intbv(start_gap)[3:]),
+            gap=Signal(intbv(_start_gap(plan))[3:]),
             rc=Signal(intbv(0, min=0, max=t.record_chunks + max(t.chunks) + 1)),
             size=size,
             chars=chars,
@@ -118,7 +122,7 @@ def step_walker(
     width = plan.width
     # A pad is at most 7 bytes: compare it with a constant its 3 bits hold (8 would read as 0).
     pad_cap = min(width, 7)
-    start_gap = 4 if plan.is_cdr else 0
+    start_gap = _start_gap(plan)
     pc, chunk, entered, rem, piece, gap = walk.position()
     rc, size, chars, padding, element_end = walk.proposal()
     go, skip = walk.go, walk.skip

@@ -1,11 +1,11 @@
 """The publisher converter: the accelerator's fields and streams in, a frame on AXI-Stream out.
 
-It walks the same plan as the subscriber and gives the byte packer (`packer`) a record chunk,
-a payload chunk or padding per cycle. Record bytes come from fixed sources per lane
-(`sources`): field inputs, length prefixes computed from the length inputs, the CDR header,
-zeros for excluded fields and padding. Strings and sequences are pulled from their sub-streams
-when their turn comes; each element of a sequence of messages is taken from its channel when
-its first byte is due and acknowledged when its last one is out.
+It walks the same plan as the subscriber, through the same step walker (`walker`), and gives
+the byte packer (`packer`) a record chunk, a payload chunk or padding per cycle. Record bytes
+come from fixed sources per lane (`sources`): field inputs, length prefixes computed from the
+length inputs, the CDR header, zeros for excluded fields and padding. Strings and sequences are
+pulled from their sub-streams when their turn comes; each element of a sequence of messages is
+taken from its channel when its first byte is due and acknowledged when its last one is out.
 
 The frame's length is known before the first beat: folded at compile time for a fixed-size
 message, computed by the frame-length circuit (`frame_length`) from the length inputs
@@ -26,14 +26,16 @@ from __future__ import annotations
 from myhdl import ConcatSignal, Constant, Signal, always_comb, always_seq, block, intbv
 
 from rfc.lib.axi_stream import AxiStream
+from rfc.lib.converters.bools import bool_bytes
 from rfc.lib.converters.frame_buffer import frame_buffer
 from rfc.lib.converters.frame_length import frame_length_circuit
 from rfc.lib.converters.packer import byte_packer
-from rfc.lib.converters.ports import COUNTER_BITS, Side, count_bits, dma_ports, ports_of
+from rfc.lib.converters.ports import COUNTER_BITS, Side, dma_ports, ports_of
 from rfc.lib.converters.sources import payload_bases, payload_sources, record_sources
 from rfc.lib.converters.steps import End, Loop, Next, Payload, Plan, Record
 from rfc.lib.converters.tables import Kind, tables
-from rfc.lib.converters.wiring import LoopControl, bits_of, follow, loop_counters, select_bit
+from rfc.lib.converters.walker import Walk, step_walker
+from rfc.lib.converters.wiring import bits_of, follow, select_bit
 from rfc.lib.slice import register_slice
 from rfc.lib.types import Instances, SignalLike
 from rfc.messages.codec import default_values, encode
@@ -75,48 +77,30 @@ def rfc_publisher(
     """
     t = tables(plan)
     width = plan.width
-    # A pad is at most 7 bytes: compare it with a constant its 3 bits hold (8 would read as 0).
-    pad_cap = min(width, 7)
     clk, rst = ports["clk"], ports["rst"]
     msg_valid, msg_ready = ports["msg_valid"], ports["msg_ready"]
-    pc_bits = max(1, (len(plan.steps) - 1).bit_length())
     buffered = plan.store_and_forward
-    cdr = plan.is_cdr
-    start_gap = 4 if cdr else 0
-    count_width = count_bits(max([1, *t.maximum]))
-    rem_bits = count_width + 4
     bases = payload_bases(plan)
     owner_rom = _owners(plan)
     length_names, length_rom = _length_inputs(plan)
-    kind_rom, align_rom, chunks_rom, last_rom, base_rom = (
-        t.kind,
-        t.align_mask,
-        t.chunks,
-        t.last_size,
-        t.base,
-    )
-    shift_rom, term_rom, pieces_rom, element_rom = t.shift, t.terminator, t.pieces, t.element_mask
-    bool_rom, target_rom = t.is_bool, t.target
+    kind_rom = t.kind
 
-    pc, pc_n = (Signal(intbv(0, min=0, max=2**pc_bits)) for _ in range(2))
-    chunk, chunk_n = (Signal(intbv(0, min=0, max=max(t.chunks) + 1)) for _ in range(2))
-    entered, entered_n = (Signal(bool(0)) for _ in range(2))
-    rem, rem_n = (Signal(intbv(0)[rem_bits:]) for _ in range(2))
-    piece, piece_n = (Signal(intbv(0, min=0, max=max(t.pieces) + 1)) for _ in range(2))
-    gap, gap_n = (Signal(intbv(start_gap)[3:]) for _ in range(2))
+    walk = Walk.of(plan)
+    pc, entered, rem, piece = walk.pc, walk.entered, walk.rem, walk.piece
+    rc, size, chars, padding, element_end = walk.proposal()
+    go, skip = walk.go, walk.skip
     active, active_n = (Signal(bool(0)) for _ in range(2))
     give = Signal(intbv(0, min=0, max=width + 1))
     data = Signal(intbv(0)[8 * width :])
     room, idle = Signal(bool(0)), Signal(bool(0))
     start, flush, commit = Signal(bool(0)), Signal(bool(0)), Signal(bool(0))
-    load_loop, next_element = Signal(bool(0)), Signal(bool(0))
     count = Signal(intbv(0)[32:])
-    rc = Signal(intbv(0, min=0, max=t.record_chunks + max(t.chunks) + 1))
     record_lanes = [Signal(intbv(0)[8:]) for _ in range(width)]
     record_bytes = ConcatSignal(*reversed(record_lanes)) if width > 1 else record_lanes[0]
     piece_index = Signal(intbv(0, min=0, max=max(2, max(bases) + max(t.pieces) + 1)))
     payload_lanes = [Signal(intbv(0)[8:]) for _ in range(width)]
     payload_bytes = ConcatSignal(*reversed(payload_lanes)) if width > 1 else payload_lanes[0]
+    elements = Signal(intbv(0)[8 * width :])
     fixed = plan.layout.fixed_size
     if fixed is None and not length_names:  # every string and sequence stays empty: one size
         fixed = len(encode(plan.layout, default_values(plan.layout)))
@@ -167,51 +151,27 @@ def rfc_publisher(
     streams = [plan.payload(at) for at in t.streams]
     stream_valid = Signal(bool(0)) if streams else Constant(bool(0))
     stream_take = Signal(bool(0))
-    loop_counts = [Signal(intbv(0)[count_bits(plan.loop(at).maximum) :]) for at in t.loops]
-    loop_more = [Signal(bool(0)) for _ in t.loops]
-    more = Signal(bool(0)) if t.loops else Constant(bool(0))
 
-    # Walks the steps as the subscriber's `control` does, but writes bytes under backpressure
-    # where that one reads them and aborts: one walker for both would split each process.
     @always_comb
     def control() -> None:
         kind = kind_rom[pc]
-        align = align_rom[pc]
-        chunks = chunks_rom[pc]
-        last_size = last_rom[pc]
-        base = base_rom[pc]
-        shift = shift_rom[pc]
-        term = term_rom[pc]
-        parts = pieces_rom[pc]
-        element = element_rom[pc]
-        bools = bool_rom[pc]
-        boolean = bools == 1
-        target = target_rom[pc]
         slot = length_rom[pc]
         payload_base = bases[pc]
 
-        pc_n.next = pc
-        chunk_n.next = chunk
-        entered_n.next = entered
-        rem_n.next = rem
-        piece_n.next = piece
+        # Each output idle first: the subscriber's control starts alike, with other outputs.
         active_n.next = active
         give.next = 0
         data.next = 0
         start.next = False
         flush.next = False
         commit.next = False
-        load_loop.next = False
-        next_element.next = False
         stream_take.next = False
         msg_ready.next = False
         drain.next = False
         faulty_n.next = faulty
-        rc.next = base + chunk
+        go.next = False
+        skip.next = False
         piece_index.next = payload_base + piece
-        step = 0
-        pad = intbv(0)[3:]
-        pad[:] = gap & align
         value = intbv(0)[32:]
         for bit in range(32):
             value[bit] = length_bus[32 * slot + bit]
@@ -229,119 +189,54 @@ def rfc_publisher(
         ended = streaming and (finished or moved_on) and not stream_valid
         if running and owner_valid:
             if kind == Kind.RECORD:
-                if chunk == 0 and pad != 0:
-                    step = int(pad)
-                    if pad > pad_cap:
-                        step = width
-                elif chunk == chunks - 1:
-                    step = last_size
-                else:
-                    step = width
                 if room:
-                    give.next = step
-                    if chunk != 0 or pad == 0:
+                    go.next = True
+                    give.next = size
+                    if not padding:
                         data.next = record_bytes
-                        if chunk == chunks - 1:
-                            pc_n.next = pc + 1
-                            chunk_n.next = 0
-                        else:
-                            chunk_n.next = chunk + 1
-                else:
-                    step = 0
             elif kind == Kind.PAYLOAD:
-                if not entered:
-                    entered_n.next = True
-                    piece_n.next = 0
-                    rem_n.next = (value << shift) + term
-                elif rem == 0:
-                    pc_n.next = pc + 1
-                    entered_n.next = False
-                elif (gap & element) != 0 and piece == 0:
-                    pad[:] = gap & element
-                    step = int(pad)
-                    if pad > pad_cap:
-                        step = width
+                if not entered or rem == 0:
+                    go.next = True
+                elif padding:
                     if room:
-                        give.next = step
-                    else:
-                        step = 0
-                else:
-                    step = width
-                    if rem < width:
-                        step = int(rem)
-                    chars = step
-                    if term == 1 and rem <= width:
-                        chars = step - 1
-                    if room and (chars == 0 or stream_valid or ended):
-                        give.next = step
-                        rem_n.next = rem - step
-                        if ended and chars > 0:
-                            faulty_n.next = True
-                        if piece == parts - 1 or rem <= width:
-                            piece_n.next = 0
-                            stream_take.next = chars > 0 and not ended
-                        else:
-                            piece_n.next = piece + 1
-                        masked = intbv(0)[8 * width :]
-                        for lane in range(width):
-                            if lane < chars and not ended:
-                                nonzero = False
-                                for bit in range(8):
-                                    if payload_bytes[8 * lane + bit]:
-                                        nonzero = True
-                                for bit in range(8):
-                                    if boolean:
-                                        masked[8 * lane + bit] = bit == 0 and nonzero
-                                    else:
-                                        masked[8 * lane + bit] = payload_bytes[8 * lane + bit]
-                        data.next = masked
-                    else:
-                        step = 0
+                        go.next = True
+                        give.next = size
+                elif room and (chars == 0 or stream_valid or ended):
+                    go.next = True
+                    give.next = size
+                    if ended and chars > 0:
+                        faulty_n.next = True
+                    stream_take.next = element_end and chars > 0 and not ended
+                    masked = intbv(0)[8 * width :]
+                    for lane in range(width):
+                        if lane < chars and not ended:
+                            for bit in range(8):
+                                masked[8 * lane + bit] = elements[8 * lane + bit]
+                    data.next = masked
             elif kind == Kind.LOOP:
-                if value == 0:
-                    pc_n.next = target
-                else:
-                    load_loop.next = True
-                    pc_n.next = pc + 1
+                go.next = True
+                skip.next = value == 0
             elif kind == Kind.NEXT:
-                next_element.next = True
-                if more:
-                    pc_n.next = target
-                else:
-                    pc_n.next = pc + 1
-            elif streaming:
-                if through_valid or leftover:  # beats beyond the announced length
-                    drain.next = True
-                    faulty_n.next = True
-                elif msg_valid:
+                go.next = True
+            else:  # the End: the message is taken once its frame is out
+                done = not streaming and not buffered
+                if streaming:
+                    if through_valid or leftover:  # beats beyond the announced length
+                        drain.next = True
+                        faulty_n.next = True
+                    else:
+                        done = bool(msg_valid)
+                elif buffered:
+                    flush.next = True
+                    done = idle and not p_valid
+                    commit.next = done
+                if done:
                     msg_ready.next = True
-                    pc_n.next = 0
+                    go.next = True
                     active_n.next = False
-            elif not buffered:
-                msg_ready.next = True
-                pc_n.next = 0
-                active_n.next = False
-            else:
-                flush.next = True
-                if idle and not p_valid:
-                    commit.next = True
-                    msg_ready.next = True
-                    pc_n.next = 0
-                    active_n.next = False
-        if kind == Kind.END:
-            gap_n.next = start_gap
-        else:
-            gap_n.next = (int(gap) + 8 - step) % 8
 
-    # Latches the walk's registers as the subscriber's `registers` does, and its own beside.
     @always_seq(clk.posedge, reset=rst)
     def registers() -> None:
-        pc.next = pc_n
-        chunk.next = chunk_n
-        entered.next = entered_n
-        rem.next = rem_n
-        piece.next = piece_n
-        gap.next = gap_n
         active.next = active_n
         if start:
             written.next = give
@@ -356,20 +251,20 @@ def rfc_publisher(
             if msg_ready and faulty_n:
                 mismatches.next = mismatches + 1
 
-    blocks = [control, registers, record_sources(plan, ports, rc, record_lanes), *skid]
+    walker = step_walker(plan, clk, rst, walk, count)
+    blocks = [walker, control, registers, record_sources(plan, ports, rc, record_lanes), *skid]
     if len(channel_valids) > 1:
         blocks.append(select_bit(bits_of(channel_valids), owner_rom, pc, owner_valid))
-    blocks.append(channel_readies(plan, ports, pc, next_element))
+    blocks.append(channel_readies(plan, ports, pc, walk.next_element))
     if streams:
         blocks.append(payload_sources(plan, ports, piece_index, payload_lanes))
+        blocks.append(bool_bytes(plan, pc, payload_bytes, elements))
         blocks.append(stream_handshakes(plan, ports, pc, stream_take, stream_valid, drain))
     if streaming:
         blocks.append(follow(mismatches, ports["error_count"]))
     if held:
         blocks.append(select_bit(bits_of(empties), tuple(held_table), pc, gone))
         blocks.append(anything_left(bits_of(empties[1:]), leftover))
-    loop_control = LoopControl(clk, rst, pc, count, load_loop, next_element)
-    blocks.append(loop_counters(plan, loop_control, loop_counts, loop_more, more))
     if fixed is None and not buffered:
         counts = {name: ports[name] for name in length_names}
         blocks.append(frame_length_circuit(plan, counts, frame_total))
@@ -425,14 +320,12 @@ def _widened(signal: SignalLike) -> list[SignalLike]:
 
 
 @block
-def channel_ready(
-    next_element: SignalLike, pc: SignalLike, at: int, ready: SignalLike
-) -> Instances:
-    """Acknowledge an element when its Next step (`at`) is done."""
+def step_ready(done: SignalLike, pc: SignalLike, at: int, ready: SignalLike) -> Instances:
+    """Acknowledge a channel's element or a sub-stream's beat when step `at` is `done` with it."""
 
     @always_comb
     def acknowledge() -> None:
-        ready.next = next_element and pc == at
+        ready.next = done and pc == at
 
     return acknowledge
 
@@ -441,24 +334,13 @@ def channel_ready(
 def channel_readies(
     plan: Plan, ports: dict[str, SignalLike], pc: SignalLike, next_element: SignalLike
 ) -> Instances:
-    """One `channel_ready` per selected element channel."""
+    """One `step_ready` per selected element channel: at its Next step."""
     blocks = []
     for at, step in enumerate(plan.steps):
         if isinstance(step, Next) and plan.channels[step.channel].selected:
             ready = ports[f"{plan.channels[step.channel].name}_ready"]
-            blocks.append(channel_ready(next_element, pc, at, ready))
+            blocks.append(step_ready(next_element, pc, at, ready))
     return blocks
-
-
-@block
-def stream_ready(take: SignalLike, pc: SignalLike, at: int, ready: SignalLike) -> Instances:
-    """Take a sub-stream beat when the payload step `at` has used all of it."""
-
-    @always_comb
-    def acknowledge() -> None:
-        ready.next = take and pc == at
-
-    return acknowledge
 
 
 # Compares with all ones where the manager's `spread_bit` drives them: another circuit.
@@ -474,11 +356,12 @@ def anything_left(empties: SignalLike, left: SignalLike) -> Instances:
     return check
 
 
+# Shaped like the guards' `buffer_addresses`: there an address clamp, here a handshake.
 @block
 def draining_ready(
     take: SignalLike, pc: SignalLike, at: int, drain: SignalLike, ready: SignalLike
 ) -> Instances:
-    """`stream_ready`, and every beat while `drain`: the streamed-through stream's extra beats."""
+    """`step_ready`, and every beat while `drain`: the streamed-through stream's extra beats."""
 
     @always_comb
     def acknowledge() -> None:
@@ -508,7 +391,7 @@ def stream_handshakes(
         if plan.streamed_last is not None and stream.channel == 0:
             blocks.append(draining_ready(take, pc, at, drain, ready))
         else:
-            blocks.append(stream_ready(take, pc, at, ready))
+            blocks.append(step_ready(take, pc, at, ready))
         valids.append(ports[f"{stream.stream}_tvalid"])
         table[at] = index
     if len(valids) > 1:

@@ -1,10 +1,11 @@
 """The subscriber converter: a frame on AXI-Stream in, the message's fields and streams out.
 
-One control process walks the plan (`tables`) and consumes the byte window (`window`) a record
-chunk, a payload chunk or a padding run per cycle. Field registers capture their bytes straight
-from fixed bus lanes when their record chunk passes (`fields`); strings and primitive sequences
-leave through one shared output register demultiplexed to their sub-streams; each element of a
-sequence of messages or strings is handed over on its channel before the next is parsed.
+One control process walks the plan (`tables`) through the step walker both converters share
+(`walker`) and consumes the byte window (`window`) a record chunk, a payload chunk or a padding
+run per cycle. Field registers capture their bytes straight from fixed bus lanes when their
+record chunk passes (`fields`); strings and primitive sequences leave through one shared output
+register demultiplexed to their sub-streams; each element of a sequence of messages or strings
+is handed over on its channel before the next is parsed.
 
 Malformed frames — early ``tlast``, a length beyond its maximum, a CDR string without its NUL,
 trailing bytes beyond ROS 2's padding to 4, a wrong CDR encapsulation — raise ``msg_error``,
@@ -22,6 +23,7 @@ from __future__ import annotations
 from myhdl import Constant, Signal, always_comb, always_seq, block, concat, intbv
 
 from rfc.lib.axi_stream import AxiStream
+from rfc.lib.converters.bools import bool_bytes
 from rfc.lib.converters.fields import field_captures
 from rfc.lib.converters.malformed import Reason
 from rfc.lib.converters.outputs import element_handshakes, length_registers, stream_outputs
@@ -35,8 +37,9 @@ from rfc.lib.converters.ports import (
 )
 from rfc.lib.converters.steps import Plan
 from rfc.lib.converters.tables import Kind, tables
+from rfc.lib.converters.walker import Walk, step_walker
 from rfc.lib.converters.window import byte_window
-from rfc.lib.converters.wiring import LoopControl, bits_of, loop_counters, select_bit
+from rfc.lib.converters.wiring import bits_of, select_bit
 from rfc.lib.types import Instances, SignalLike
 
 TRUNCATED, MAXIMUM, TRAILING, ENCODING = (
@@ -59,22 +62,14 @@ def rfc_subscriber(plan: Plan, **ports: SignalLike) -> Instances:
     """The subscriber for `plan`; `ports` holds one signal per name of `subscriber_ports`."""
     t = tables(plan)
     width = plan.width
-    # A pad is at most 7 bytes: compare it with a constant its 3 bits hold (8 would read as 0).
-    pad_cap = min(width, 7)
     clk, rst = ports["clk"], ports["rst"]
     msg_valid, msg_ready, msg_error = ports["msg_valid"], ports["msg_ready"], ports["msg_error"]
     error_count, error_reason = ports["error_count"], ports["error_reason"]
-    steps = len(plan.steps)
-    pc_bits = max(1, (steps - 1).bit_length())
     end_pc = t.end
     payloads = [plan.payload(pc) for pc in t.streams]
     out_bytes = max([width] + [max(width, p.element_size) for p in payloads])
-    length_limit = max([1, *t.maximum])
-    count_width = count_bits(length_limit)
-    rem_bits = count_width + 4
+    count_width = count_bits(max([1, *t.maximum]))
     cdr = plan.is_cdr
-    # Bytes from the frame's first byte to the next 8-byte boundary of the CDR payload.
-    start_gap = 4 if cdr else 0
 
     # ---- the byte window
     front = Signal(intbv(0)[8 * width :])
@@ -94,13 +89,11 @@ def rfc_subscriber(plan: Plan, **ports: SignalLike) -> Instances:
         width,
     )
 
-    # ---- control registers and their next values
-    pc, pc_n = (Signal(intbv(0, min=0, max=2**pc_bits)) for _ in range(2))
-    chunk, chunk_n = (Signal(intbv(0, min=0, max=max(t.chunks) + 1)) for _ in range(2))
-    entered, entered_n = (Signal(bool(0)) for _ in range(2))
-    rem, rem_n = (Signal(intbv(0)[rem_bits:]) for _ in range(2))
-    piece, piece_n = (Signal(intbv(0, min=0, max=max(t.pieces) + 1)) for _ in range(2))
-    gap, gap_n = (Signal(intbv(start_gap)[3:]) for _ in range(2))
+    # ---- where the walk stands, and the control's own registers and their next values
+    walk = Walk.of(plan)
+    pc, entered, rem, piece, gap = walk.pc, walk.entered, walk.rem, walk.piece, walk.gap
+    rc, size, chars, padding, element_end = walk.proposal()
+    go, skip = walk.go, walk.skip
     last4, last4_n = (Signal(intbv(0)[32:]) for _ in range(2))
     abort, abort_n = (Signal(bool(0)) for _ in range(2))
     cause, cause_n = (Signal(intbv(0)[REASON_BITS:]) for _ in range(2))
@@ -114,12 +107,10 @@ def rfc_subscriber(plan: Plan, **ports: SignalLike) -> Instances:
 
     # ---- events the control process raises for the data path
     capture = Signal(bool(0))
-    rc = Signal(intbv(0, min=0, max=t.record_chunks + max(t.chunks) + 1))
     lengths = Signal(bool(0))
     count = Signal(intbv(0)[count_width:])
-    load_loop = Signal(bool(0))
-    next_element = Signal(bool(0))
     data = Signal(intbv(0)[8 * width :])
+    elements = Signal(intbv(0)[8 * width :])  # `data` with bools made 0 or 1
     finished = Signal(bool(0))
     failed = Signal(bool(0))
     header = Signal(intbv(0)[16:]) if cdr else Constant(intbv(CDR_ENCAPSULATION)[16:])
@@ -127,33 +118,12 @@ def rfc_subscriber(plan: Plan, **ports: SignalLike) -> Instances:
     # ---- handshakes in from the consumer, selected by the current step
     channel_ready = Signal(bool(1)) if len(plan.channels) > 1 else Constant(bool(1))
     o_ready = Signal(bool(0)) if t.streams else Constant(bool(0))
-    loop_counts = [Signal(intbv(0)[count_bits(plan.loop(pc).maximum) :]) for pc in t.loops]
-    loop_more = [Signal(bool(0)) for _ in t.loops]
-    more = Signal(bool(0)) if t.loops else Constant(bool(0))
     readies = [
         ports[f"{c.name}_ready"] if c.index and c.selected else Constant(bool(1))
         for c in plan.channels
     ]
-    kind_rom, align_rom, chunks_rom, last_rom, base_rom = (
-        t.kind,
-        t.align_mask,
-        t.chunks,
-        t.last_size,
-        t.base,
-    )
-    shift_rom, term_rom, max_rom, stream_rom, selected_rom = (
-        t.shift,
-        t.terminator,
-        t.maximum,
-        t.stream,
-        t.selected,
-    )
-    pieces_rom, element_rom, bool_rom, target_rom = (
-        t.pieces,
-        t.element_mask,
-        t.is_bool,
-        t.target,
-    )
+    kind_rom, term_rom, max_rom = t.kind, t.terminator, t.maximum
+    stream_rom, selected_rom, pieces_rom = t.stream, t.selected, t.pieces
 
     @always_comb
     def zero_on_abort() -> None:
@@ -162,16 +132,9 @@ def rfc_subscriber(plan: Plan, **ports: SignalLike) -> Instances:
         else:
             data.next = front
 
-    # Walks the steps as the publisher's `control` does, but reads bytes and aborts where that
-    # one writes them under backpressure: one walker for both would split each process.
     @always_comb
     def control() -> None:
         kind = kind_rom[pc]
-        align = align_rom[pc]
-        chunks = chunks_rom[pc]
-        last_size = last_rom[pc]
-        base = base_rom[pc]
-        shift = shift_rom[pc]
         term = term_rom[pc]
         terminated = term == 1
         maximum = max_rom[pc]
@@ -179,17 +142,9 @@ def rfc_subscriber(plan: Plan, **ports: SignalLike) -> Instances:
         chosen = selected_rom[pc]
         selected = chosen == 1
         parts = pieces_rom[pc]
-        element = element_rom[pc]
-        bools = bool_rom[pc]
-        boolean = bools == 1
-        target = target_rom[pc]
 
-        step = 0  # bytes the frame advances by this cycle (zeros when aborted)
-        pc_n.next = pc
-        chunk_n.next = chunk
-        entered_n.next = entered
-        rem_n.next = rem
-        piece_n.next = piece
+        moves = False  # the current step goes this cycle (`step_walker`'s go)
+        # Each output idle first: shaped like the publisher's and stream_engine's set-ups only.
         abort_n.next = abort
         trail_n.next = trail
         o_data_n.next = o_data
@@ -200,49 +155,29 @@ def rfc_subscriber(plan: Plan, **ports: SignalLike) -> Instances:
         take.next = 0
         capture.next = False
         lengths.next = False
-        load_loop.next = False
-        next_element.next = False
         release.next = False
         finished.next = False
+        skip.next = False
         count.next = 0
-        rc.next = base + chunk
         length = intbv(0)[32:]
         length[:] = last4
-        pad = intbv(0)[3:]
-        pad[:] = gap & align
-        chars = 0
         why = 0  # the reason of an abort raised this cycle (`Reason`)
         done = False
 
         if kind == Kind.RECORD:
-            if chunk == 0 and pad != 0:
-                step = int(pad)
-                if pad > pad_cap:
-                    step = width
-            elif chunk == chunks - 1:
-                step = last_size
-            else:
-                step = width
-            if abort or avail >= step:
+            if abort or avail >= size:
+                moves = True
                 if not abort:
-                    take.next = step
-                if chunk != 0 or pad == 0:
+                    take.next = size
+                if not padding:
                     capture.next = True
-                    if chunk == chunks - 1:
-                        pc_n.next = pc + 1
-                        chunk_n.next = 0
-                    else:
-                        chunk_n.next = chunk + 1
-            else:
-                step = 0
-                if ended:
-                    abort_n.next = True
-                    why = TRUNCATED
+            elif ended:
+                abort_n.next = True
+                why = TRUNCATED
         elif kind == Kind.PAYLOAD:
             if not entered:
+                moves = True
                 lengths.next = True
-                entered_n.next = True
-                piece_n.next = 0
                 if (terminated and (length == 0 or length > maximum + 1)) or (
                     not terminated and length > maximum
                 ):
@@ -250,41 +185,27 @@ def rfc_subscriber(plan: Plan, **ports: SignalLike) -> Instances:
                     why = MAXIMUM
                     if terminated and length == 0:
                         why = ENCODING
-                    rem_n.next = 0
+                    skip.next = True
                 elif terminated:
                     count.next = length - 1
-                    rem_n.next = length
                 else:
                     count.next = length
-                    rem_n.next = length << shift
             elif rem == 0:
-                pc_n.next = pc + 1
-                entered_n.next = False
-            elif (gap & element) != 0 and piece == 0:
-                pad[:] = gap & element
-                step = int(pad)
-                if pad > pad_cap:
-                    step = width
-                if abort or avail >= step:
+                moves = True
+            elif padding:
+                if abort or avail >= size:
+                    moves = True
                     if not abort:
-                        take.next = step
-                else:
-                    step = 0
-                    if ended:
-                        abort_n.next = True
-                        why = TRUNCATED
+                        take.next = size
+                elif ended:
+                    abort_n.next = True
+                    why = TRUNCATED
             else:
-                step = width
-                if rem < width:
-                    step = int(rem)
-                chars = step
-                if terminated and rem <= width:
-                    chars = step - 1
                 free = not selected or not o_valid or o_ready
-                if (abort or avail >= step) and free:
+                if (abort or avail >= size) and free:
+                    moves = True
                     if not abort:
-                        take.next = step
-                    rem_n.next = rem - step
+                        take.next = size
                     if terminated and rem <= width and not abort:
                         for bit in range(8):
                             if front[8 * (int(rem[4:]) - 1) + bit]:
@@ -295,90 +216,64 @@ def rfc_subscriber(plan: Plan, **ports: SignalLike) -> Instances:
                         assembled[:] = o_data
                         for lane in range(out_bytes):
                             if lane // width == piece:
-                                nonzero = False
                                 for bit in range(8):
-                                    if data[8 * (lane % width) + bit]:
-                                        nonzero = True
-                                for bit in range(8):
-                                    if boolean:
-                                        assembled[8 * lane + bit] = bit == 0 and nonzero
-                                    else:
-                                        assembled[8 * lane + bit] = data[8 * (lane % width) + bit]
+                                    assembled[8 * lane + bit] = elements[8 * (lane % width) + bit]
                         o_data_n.next = assembled
                         o_stream_n.next = stream
-                        if piece == parts - 1 or rem <= width:
+                        if element_end:
                             keep = intbv(0)[out_bytes:]
                             for lane in range(out_bytes):
                                 keep[lane] = parts > 1 or lane < chars
                             o_keep_n.next = keep
                             o_last_n.next = rem - term <= width
                             o_valid_n.next = True
-                    if piece == parts - 1:
-                        piece_n.next = 0
-                    else:
-                        piece_n.next = piece + 1
-                else:
-                    step = 0
-                    if ended and avail < rem and not abort:
-                        abort_n.next = True
-                        why = TRUNCATED
+                elif ended and avail < rem and not abort:
+                    abort_n.next = True
+                    why = TRUNCATED
         elif kind == Kind.LOOP:
+            moves = True
             lengths.next = True
             if length > maximum:
                 abort_n.next = True
                 why = MAXIMUM
-                pc_n.next = target
+                skip.next = True
             elif length == 0:
-                pc_n.next = target
+                skip.next = True
             else:
                 count.next = length
-                load_loop.next = True
-                pc_n.next = pc + 1
         elif kind == Kind.NEXT:
-            if channel_ready and not o_valid:
-                next_element.next = True
-                if more:
-                    pc_n.next = target
-                else:
-                    pc_n.next = pc + 1
+            moves = channel_ready and not o_valid
         elif not (ended and avail == 0):
-            step = width
+            drained = width
             if avail < width:
-                step = int(avail)
-            take.next = step
-            if int(trail) + step > 7:  # int(): unsigned sums keep the operands' width in VHDL
+                drained = int(avail)
+            take.next = drained
+            if int(trail) + drained > 7:  # int(): unsigned sums keep the operands' width in VHDL
                 trail_n.next = 7
             else:
-                trail_n.next = int(trail) + step
-            step = 0
+                trail_n.next = int(trail) + drained
         elif msg_ready and not o_valid:
+            moves = True
             finished.next = True
             done = True
             release.next = True
-            pc_n.next = 0
             abort_n.next = False
             trail_n.next = 0
+        go.next = moves
         cause_n.next = cause
         if done:
             cause_n.next = 0
         elif why != 0 and not abort:
             cause_n.next = why
+        step = 0  # bytes the frame advances by this cycle (zeros when aborted)
+        if moves:
+            step = int(size)
         shifted = intbv(0)[8 * width + 32 :]
         shifted[:] = concat(data, last4) >> (8 * step)
         last4_n.next = shifted[32:]
-        if kind == Kind.END:
-            gap_n.next = start_gap
-        else:
-            gap_n.next = (int(gap) + 8 - step) % 8
 
     @always_seq(clk.posedge, reset=rst)
     def registers() -> None:
-        pc.next = pc_n
-        chunk.next = chunk_n
-        entered.next = entered_n
-        rem.next = rem_n
-        piece.next = piece_n
-        gap.next = gap_n
         last4.next = last4_n
         abort.next = abort_n
         cause.next = cause_n
@@ -424,13 +319,13 @@ def rfc_subscriber(plan: Plan, **ports: SignalLike) -> Instances:
         msg_error.next = failed
         error_count.next = errors
 
-    blocks = [window, zero_on_abort, control, registers, verdict, message_handshake]
+    walker = step_walker(plan, clk, rst, walk, count)
+    blocks = [window, walker, zero_on_abort, control, registers, verdict, message_handshake]
+    blocks.append(bool_bytes(plan, pc, data, elements))
     if len(readies) > 1:
         blocks.append(select_bit(bits_of(readies), t.channel, pc, channel_ready))
     blocks.append(field_captures(plan, ports, clk, rst, capture, rc, data, header))
     blocks.append(length_registers(plan, ports, clk, rst, lengths, pc, count))
-    loop_control = LoopControl(clk, rst, pc, count, load_loop, next_element)
-    blocks.append(loop_counters(plan, loop_control, loop_counts, loop_more, more))
-    blocks.append(element_handshakes(plan, ports, pc, o_valid, loop_counts))
+    blocks.append(element_handshakes(plan, ports, pc, o_valid, list(walk.loop_counts)))
     blocks.append(stream_outputs(plan, ports, o_data, o_keep, o_last, o_valid, o_stream, o_ready))
     return blocks

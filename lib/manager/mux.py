@@ -210,6 +210,7 @@ def chunk_mux(
 
         # The buffer: the head leaves and the tail moves up; the entering beat joins behind
         # what stays, and a chunk's end with nothing entering marks the youngest beat held.
+        # (Beat moves alike in shape to the slice's and the prefix guard's: other registers.)
         if leaving and count == 2:
             head_data.next = tail_data
             head_keep.next = tail_keep

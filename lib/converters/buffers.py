@@ -46,7 +46,6 @@ def split(word: SignalLike, low: int, target: SignalLike) -> Instances:
     return extract
 
 
-# Port dictionaries, as `publisher_inputs` of the manager: a different block on the same shape.
 @block
 def stream_buffers(
     plan: Plan,

@@ -10,13 +10,15 @@ the beats a slice holds let a publisher go on while the scheduler decides.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 from myhdl import Signal, always_comb, block, intbv
 
 from rfc.lib.slice import SliceSide, parts_slice
 from rfc.lib.types import Instances, SignalLike
 
 
-def stream_like(signals: list[SignalLike]) -> list[SignalLike]:
+def stream_like(signals: Sequence[SignalLike]) -> list[SignalLike]:
     """Fresh signals of the widths (and kinds) of `signals`, for the other side of a slice."""
     return [
         Signal(bool(0)) if isinstance(s.val, bool) else Signal(intbv(0)[len(s) :]) for s in signals

@@ -152,36 +152,33 @@ def manager_body(shape: ManagerShape, **ports: SignalLike) -> Instances:
         ]
 
     # The publishers' chunks reach the DMA through the status inserter and a last slice.
-    out = {
-        "tdata": Signal(intbv(0)[width:]),
-        "tkeep": Signal(intbv(0)[lanes:]),
-        "tvalid": Signal(bool(0)),
-        "tlast": Signal(bool(0)),
-    }
-    out_ready = Signal(bool(0))
-    s2mm = {name: Signal(sig.val) for name, sig in out.items()}
-    s2mm_ready = Signal(bool(0))
+    out = AxiStream(
+        tdata=Signal(intbv(0)[width:]),
+        tkeep=Signal(intbv(0)[lanes:]),
+        tvalid=Signal(bool(0)),
+        tready=Signal(bool(0)),
+        tlast=Signal(bool(0)),
+    )
+    s2mm = AxiStream(*stream_like(out.signals()))
     counters = None
     if n_sub:
         counters, single = _vector([ports[name] for name in status_inputs(n_sub)])
         assert single is None  # four reasons per subscriber
     parts.append(
         status_inserter(
-            clk, rst, request, counters,
-            AxiStream(out["tdata"], out["tkeep"], out["tvalid"], out_ready, out["tlast"]),
-            AxiStream(s2mm["tdata"], s2mm["tkeep"], s2mm["tvalid"], s2mm_ready, s2mm["tlast"]),
-            width=width, count=len(status_inputs(n_sub)),
+            clk, rst, request, counters, out, s2mm, width=width,
+            count=len(status_inputs(n_sub)),
         )
     )  # fmt: skip
     dma_out = [ports[f"m_axis_s2mm_{name}"] for name in ("tdata", "tkeep", "tlast")]
     dma_side = SliceSide(dma_out, ports["m_axis_s2mm_tvalid"], ports["m_axis_s2mm_tready"])
-    s2mm_parts = [s2mm["tdata"], s2mm["tkeep"], s2mm["tlast"]]
-    parts.append(parts_slice(clk, rst, SliceSide(s2mm_parts, s2mm["tvalid"], s2mm_ready), dma_side))
+    s2mm_side = SliceSide([s2mm.tdata, s2mm.tkeep, s2mm.tlast], s2mm.tvalid, s2mm.tready)
+    parts.append(parts_slice(clk, rst, s2mm_side, dma_side))
 
     if n_pub:
-        parts.append(publisher_inputs(shape, clk, rst, ports, out, out_ready))
+        parts.append(publisher_inputs(shape, clk, rst, ports, out))
     else:
-        parts.append(silent_output(clk, out["tdata"], out["tkeep"], out["tvalid"], out["tlast"]))
+        parts.append(silent_output(clk, out))
     return parts
 
 
@@ -191,8 +188,7 @@ def publisher_inputs(
     clk: SignalLike,
     rst: SignalLike,
     ports: dict[str, SignalLike],
-    out: dict[str, SignalLike],
-    out_ready: SignalLike,
+    out: AxiStream,
 ) -> Instances:
     """Each publisher's stream and length through a slice, then the multiplexer over them."""
     assert shape.scheduler is not None
@@ -234,8 +230,7 @@ def publisher_inputs(
             AxiStream(gathered["tdata"], gathered["tkeep"], gathered["tvalid"], grant,
                       gathered["tlast"]),
             gathered["length"],
-            AxiStream(out["tdata"], out["tkeep"], out["tvalid"], out_ready, out["tlast"]),
-            width=width, scheduler=shape.scheduler,
+            out, width=width, scheduler=shape.scheduler,
         )
     )  # fmt: skip
     parts += [index_bit(grant, i, sliced["tready"][i]) for i in range(n_pub)]
@@ -271,10 +266,9 @@ def _vector(signals: list[SignalLike]) -> tuple[SignalLike, SignalLike]:
 
 
 @block
-def silent_output(
-    clk: SignalLike, tdata: SignalLike, tkeep: SignalLike, tvalid: SignalLike, tlast: SignalLike
-) -> Instances:
-    """No publishers: the PL→PS stream never sends."""
+def silent_output(clk: SignalLike, out: AxiStream) -> Instances:
+    """No publishers: the PL→PS stream `out` never sends (its ``tready`` is not read)."""
+    tdata, tkeep, tvalid, _, tlast = out.signals()
 
     @always(clk.posedge)
     def idle() -> None:

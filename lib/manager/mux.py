@@ -22,7 +22,7 @@ from myhdl import Signal, always_comb, always_seq, block, enum, intbv
 
 from rfc.lib.axi_stream import AxiStream
 from rfc.lib.manager.header import FLAG_END, FLAG_START, HEADER_BYTES, BusGeometry
-from rfc.lib.schedulers.hardware import scheduler_block
+from rfc.lib.schedulers.hardware import scheduler_hardware
 from rfc.lib.schedulers.spec import AnySchedulerSpec, CompositionSpec
 from rfc.lib.types import Instances, SignalLike
 
@@ -96,9 +96,7 @@ def chunk_mux(
     leaving = Signal(bool(0))
     out_valid = Signal(bool(0))
 
-    arbiter = scheduler_block(scheduler)(
-        clk, rst, s_tvalid, s_tlast, ready, offer, grant, scheduler
-    )
+    arbiter = scheduler_hardware(clk, rst, s_tvalid, s_tlast, ready, offer, grant, scheduler)
 
     @always_comb
     def select_holder() -> None:
@@ -212,6 +210,7 @@ def chunk_mux(
 
         # The buffer: the head leaves and the tail moves up; the entering beat joins behind
         # what stays, and a chunk's end with nothing entering marks the youngest beat held.
+        # (Beat moves alike in shape to the slice's and the prefix guard's: other registers.)
         if leaving and count == 2:
             head_data.next = tail_data
             head_keep.next = tail_keep

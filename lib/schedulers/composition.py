@@ -8,13 +8,11 @@ the granted child's grant, its offer the offered child's offer.
 
 from __future__ import annotations
 
-from collections.abc import Callable
-
 from myhdl import ConcatSignal, Signal, always_comb, block, intbv
 
 from rfc.lib.converters.wiring import follow
 from rfc.lib.schedulers.ports import SchedulerBlock, SchedulerPorts
-from rfc.lib.schedulers.spec import AnySchedulerSpec, CompositionSpec
+from rfc.lib.schedulers.spec import CompositionSpec
 from rfc.lib.types import Instances, SignalLike
 
 
@@ -22,9 +20,9 @@ from rfc.lib.types import Instances, SignalLike
 def composition(
     ports: SchedulerPorts,
     spec: CompositionSpec,
-    build: Callable[[AnySchedulerSpec], SchedulerBlock],
+    build: SchedulerBlock,
 ) -> Instances:
-    """The composite of `spec`; `build(spec)` gives the block of a child or of the parent."""
+    """The composite of `spec`; `build` is the block of any scheduler spec, child or parent."""
     clk, rst, request, last, ready, offer, grant = ports.signals()
     count = len(spec.children)
     parent_offer = Signal(intbv(0)[count:])
@@ -39,7 +37,7 @@ def composition(
         granted = Signal(intbv(0)[child.n :])
         gated = Signal(intbv(0)[child.n :])
         parts.append(
-            build(child)(clk, rst, sub_request, sub_last, parent_grant(c), offered, granted, child)
+            build(clk, rst, sub_request, sub_last, parent_grant(c), offered, granted, child)
         )
         parts.append(child_port(offered, sub_last, parent_offer(c), wants[c], ends[c], gated))
         gated_offers.append(gated)
@@ -47,9 +45,7 @@ def composition(
     parent_request = ConcatSignal(*reversed(wants))
     parent_last = ConcatSignal(*reversed(ends))
     parts.append(
-        build(spec.parent)(
-            clk, rst, parent_request, parent_last, ready, parent_offer, parent_grant, spec.parent
-        )
+        build(clk, rst, parent_request, parent_last, ready, parent_offer, parent_grant, spec.parent)
     )
     parts.append(follow(ConcatSignal(*reversed(gated_offers)), offer))
     parts.append(follow(ConcatSignal(*reversed(grants)), grant))

@@ -1,9 +1,9 @@
 """Build the hardware of any scheduler spec, and wrap it as a top-level entity.
 
-`scheduler_block(spec)` returns the block function for a `SchedulerSpec` (the statechart with
-its algorithm's parts) or a `CompositionSpec`; all share the ports (clk, rst, request, last,
-ready, offer, grant, spec). `scheduler_top` is the entity rfc generates: clk, rst, request,
-last, ready in; grant out (docs/schedulers.md, "Interface").
+`scheduler_hardware` is the block of a `SchedulerSpec` (the statechart with its algorithm's
+parts) or a `CompositionSpec`, on the ports (clk, rst, request, last, ready, offer, grant,
+spec). `scheduler_top` is the entity rfc generates: clk, rst, request, last, ready in; grant
+out (docs/schedulers.md, "Interface").
 """
 
 from __future__ import annotations
@@ -15,24 +15,14 @@ from rfc.lib.schedulers import edf, fixed_priority, lru, lst  # noqa: F401
 from rfc.lib.schedulers.composition import composition
 from rfc.lib.schedulers.ports import SchedulerBlock, SchedulerPorts
 from rfc.lib.schedulers.registry import policy_hardware
-from rfc.lib.schedulers.spec import AnySchedulerSpec, CompositionSpec, SchedulerSpec
+from rfc.lib.schedulers.spec import AnySchedulerSpec, CompositionSpec
 from rfc.lib.schedulers.statechart import statechart
 from rfc.lib.types import Instances, SignalLike
 from rfc.toolchain import start_new_design
 
 
-def scheduler_block(spec: AnySchedulerSpec) -> SchedulerBlock:
-    """The block function of `spec`.
-
-    Call it with (clk, rst, request, last, ready, offer, grant, spec).
-    """
-    return composite_scheduler if isinstance(spec, CompositionSpec) else single_scheduler
-
-
-# The `SchedulerBlock` ports, one by one as the manager's mux passes them: the two kinds of
-# scheduler, each a level of the VHDL names (single_scheduler0_..., composite_scheduler0_...).
 @block
-def single_scheduler(
+def scheduler_hardware(
     clk: SignalLike,
     rst: SignalLike,
     request: SignalLike,
@@ -40,27 +30,13 @@ def single_scheduler(
     ready: SignalLike,
     offer: SignalLike,
     grant: SignalLike,
-    spec: SchedulerSpec,
+    spec: AnySchedulerSpec,
 ) -> Instances:
-    """One algorithm: the statechart with the algorithm's parts."""
+    """The hardware of `spec`: a composition of schedulers, or one algorithm's statechart."""
     ports = SchedulerPorts(clk, rst, request, last, ready, offer, grant)
+    if isinstance(spec, CompositionSpec):
+        return composition(ports, spec, scheduler_hardware)
     return statechart(ports, spec, policy_hardware(spec))
-
-
-@block
-def composite_scheduler(
-    clk: SignalLike,
-    rst: SignalLike,
-    request: SignalLike,
-    last: SignalLike,
-    ready: SignalLike,
-    offer: SignalLike,
-    grant: SignalLike,
-    spec: CompositionSpec,
-) -> Instances:
-    """A composition of schedulers."""
-    ports = SchedulerPorts(clk, rst, request, last, ready, offer, grant)
-    return composition(ports, spec, scheduler_block)
 
 
 def scheduler_top(spec: AnySchedulerSpec) -> SchedulerBlock:
@@ -80,7 +56,7 @@ def scheduler_top(spec: AnySchedulerSpec) -> SchedulerBlock:
         grant: SignalLike,
     ) -> Instances:
         offer = Signal(intbv(0)[spec.n :])
-        return scheduler_block(spec)(clk, rst, request, last, ready, offer, grant, spec)
+        return scheduler_hardware(clk, rst, request, last, ready, offer, grant, spec)
 
     return scheduler
 

@@ -39,17 +39,6 @@ def run_register(
 
 
 @block
-def follow(source: SignalLike, target: SignalLike) -> Instances:
-    """Drive `target` with `source`."""
-
-    @always_comb
-    def copy() -> None:
-        target.next = source
-
-    return copy
-
-
-@block
 def field_register(
     clk: SignalLike,
     rst: SignalLike,
@@ -63,7 +52,9 @@ def field_register(
 
     A field in one run is captured straight into `target`; one in several has a register per
     run (reset to its part of `target`'s reset value), joined into `target` by wires, so it
-    still changes on the clock edge its last run is captured on.
+    still changes on the clock edge its last run is captured on. The join is a process of its
+    own rather than `wiring.follow`: MyHDL numbers a block's instances across the process, and
+    more `follow`s here would rename those of every block built after the converters.
     """
     assert len(target) == 8 * sum(run.count for run in runs), "a byte of the field per bit octet"
     if len(runs) == 1:
@@ -77,7 +68,13 @@ def field_register(
         run_register(clk, rst, fire, rc, data, run.rc, run.lane, part)
         for run, part in zip(runs, parts, strict=True)
     ]
-    blocks.append(follow(ConcatSignal(*reversed(parts)), target))
+    joined = ConcatSignal(*reversed(parts))
+
+    @always_comb
+    def join() -> None:
+        target.next = joined
+
+    blocks.append(join)
     return blocks
 
 

@@ -1,17 +1,41 @@
 """Field registers of the subscriber: each byte captured from a fixed lane of a fixed chunk.
 
-A field's bytes arrive in one or more bus chunks; byte ``b`` comes from lane ``lanes[b]`` of
-record chunk ``chunks[b]`` (`tables.pieces`). The register writes it when that chunk passes: no
-multiplexer is involved, only a chunk-number compare, and one process serves the whole field.
+A field's bytes arrive in one or more bus chunks, a run of contiguous lanes in each
+(`tables.pieces`). Each run has its own register, loaded with a constant slice of the chunk
+when its chunk passes: no multiplexer, no variable index (which synthesis reads as a shifter
+over the whole bus per bit), only a chunk-number compare; the field is the runs side by side.
 """
 
 from __future__ import annotations
 
-from myhdl import always_seq, block
+from myhdl import ConcatSignal, Signal, always_comb, always_seq, block, intbv
 
 from rfc.lib.converters.steps import Plan, Slot, SlotRole
-from rfc.lib.converters.tables import pieces, tables
+from rfc.lib.converters.tables import Piece, pieces, tables
 from rfc.lib.types import Instances, SignalLike
+
+
+@block
+def run_register(
+    clk: SignalLike,
+    rst: SignalLike,
+    fire: SignalLike,
+    rc: SignalLike,
+    data: SignalLike,
+    at: int,
+    lane: int,
+    target: SignalLike,
+) -> Instances:
+    """Capture `target` from the bytes of `data` from lane `lane` up when chunk `at` passes."""
+    low = 8 * lane
+    high = low + len(target)
+
+    @always_seq(clk.posedge, reset=rst)
+    def capture() -> None:
+        if fire and rc == at:
+            target.next = data[high:low]
+
+    return capture
 
 
 @block
@@ -21,24 +45,37 @@ def field_register(
     fire: SignalLike,
     rc: SignalLike,
     data: SignalLike,
-    chunks: tuple[int, ...],
-    lanes: tuple[int, ...],
+    runs: tuple[Piece, ...],
     target: SignalLike,
 ) -> Instances:
-    """Capture byte ``b`` of `target` from lane ``lanes[b]`` of `data` at chunk ``chunks[b]``."""
-    size = len(chunks)
+    """Capture `target` from its runs: bytes ``first ..`` from lanes ``lane ..`` of chunk ``rc``.
 
-    @always_seq(clk.posedge, reset=rst)
-    def capture() -> None:
-        if fire:
-            for byte in range(size):
-                at = chunks[byte]
-                lane = lanes[byte]
-                if rc == at:
-                    for bit in range(8):
-                        target.next[8 * byte + bit] = data[8 * lane + bit]
+    A field in one run is captured straight into `target`; one in several has a register per
+    run (reset to its part of `target`'s reset value), joined into `target` by wires, so it
+    still changes on the clock edge its last run is captured on. The join is a process of its
+    own rather than `wiring.follow`: MyHDL numbers a block's instances across the process, and
+    more `follow`s here would rename those of every block built after the converters.
+    """
+    assert len(target) == 8 * sum(run.count for run in runs), "a byte of the field per bit octet"
+    if len(runs) == 1:
+        return run_register(clk, rst, fire, rc, data, runs[0].rc, runs[0].lane, target)
+    reset = int(target.val)
+    parts = [
+        Signal(intbv((reset >> (8 * run.first)) & ((1 << (8 * run.count)) - 1))[8 * run.count :])
+        for run in runs
+    ]
+    blocks = [
+        run_register(clk, rst, fire, rc, data, run.rc, run.lane, part)
+        for run, part in zip(runs, parts, strict=True)
+    ]
+    joined = ConcatSignal(*reversed(parts))
 
-    return capture
+    @always_comb
+    def join() -> None:
+        target.next = joined
+
+    blocks.append(join)
+    return blocks
 
 
 @block
@@ -61,14 +98,6 @@ def bool_register(
             target.next = data[low + 8 : low] != 0
 
     return capture
-
-
-def _byte_sources(slot: Slot, base: int, width: int) -> tuple[tuple[int, ...], tuple[int, ...]]:
-    """Record chunk and lane of each byte of a slot whose record starts at chunk `base`."""
-    runs = pieces(slot, base, width)
-    chunks = tuple(run.rc for run in runs for _ in range(run.count))
-    lanes = tuple(run.lane + i for run in runs for i in range(run.count))
-    return chunks, lanes
 
 
 @block
@@ -105,11 +134,12 @@ def field_captures(
                 target = ports[slot.port]
             else:
                 continue
-            chunks, lanes = _byte_sources(slot, t.base[pc], plan.width)
+            runs = tuple(pieces(slot, t.base[pc], plan.width))
             if slot.field is not None and slot.field.element_type == "bool":
+                first = runs[0]
                 registers.append(
-                    bool_register(clk, rst, fire, rc, data, chunks[0], lanes[0], target)
+                    bool_register(clk, rst, fire, rc, data, first.rc, first.lane, target)
                 )
             else:
-                registers.append(field_register(clk, rst, fire, rc, data, chunks, lanes, target))
+                registers.append(field_register(clk, rst, fire, rc, data, runs, target))
     return registers

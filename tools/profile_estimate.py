@@ -21,6 +21,7 @@ import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
+from rfc.toolchain import module_instances
 from rfc.toolchain.yosys import estimate_script
 
 #: A line of `yosys -d`'s summary: ``   35%     1 calls   22.920 sec abc9_exe``.
@@ -37,14 +38,14 @@ class Profile:
     failed: bool
 
 
-def profile(verilog: Path, top: str, work: Path) -> Profile:
+def profile(verilog: Path, top: str, work: Path, submodules: list[Path]) -> Profile:
     """Run `estimate_script` on `top` with `yosys -d` and read its statistics."""
     executable = shutil.which("yosys")
     if executable is None:
         sys.exit("yosys is not installed; run tools/setup.sh")
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     run = subprocess.run(
-        [executable, "-d", "-p", estimate_script(verilog, top, work)],
+        [executable, "-d", "-p", estimate_script(verilog, top, work, submodules)],
         capture_output=True,
         text=True,
         check=False,
@@ -74,6 +75,7 @@ def main() -> None:
             capture_output=True,
         )
         files = sorted((out / "hw/verilog").glob("*.v"), key=lambda f: -f.stat().st_size)
+        names = {f.stem: f for f in files}
         print("| module | Verilog | Yosys CPU | peak memory | longest passes (calls) |")
         print("|---|---:|---:|---:|---|")
         for verilog in files:
@@ -81,7 +83,9 @@ def main() -> None:
                 continue
             work = Path(scratch) / verilog.stem
             work.mkdir()
-            run = profile(verilog, verilog.stem, work)
+            inside = module_instances(verilog.read_text(), names)  # mapped as black boxes
+            submodules = [names[m] for m in dict.fromkeys(m for _, m in inside)]
+            run = profile(verilog, verilog.stem, work, submodules)
             longest = ", ".join(
                 f"`{name}` {seconds:.1f} s ({calls})"
                 for name, calls, seconds in run.passes[: args.passes]

@@ -3,12 +3,16 @@
 from __future__ import annotations
 
 import re
+import tempfile
 import threading
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
 from myhdl import _block as myhdl_block
 from myhdl import _simulator as myhdl_simulator
+
+from rfc.toolchain.modules import separate_modules
 
 #: MyHDL's converters are module-level singletons configured by attributes: one at a time.
 _CONVERTER_LOCK = threading.Lock()
@@ -44,6 +48,7 @@ def convert_myhdl(
     *,
     verilog: bool = True,
     header: str = "",
+    separate: Callable[[Any], bool] | None = None,
 ) -> list[Path]:
     """Convert an elaborated MyHDL block instance to VHDL (and Verilog).
 
@@ -57,9 +62,12 @@ def convert_myhdl(
         directory: Output folder, created when missing.
         verilog: Also write ``name.v`` (without MyHDL's test bench).
         header: Comment text put at the top of each file instead of MyHDL's dated banner.
+        separate: Which sub-blocks the Verilog holds as modules of their own
+            (`rfc.toolchain.modules`), each in a file beside ``name.v``; none when None.
 
     Returns:
-        The VHDL files in compile order (MyHDL's package first), then the Verilog file.
+        The VHDL files in compile order (MyHDL's package first), then the Verilog files (the
+        separate modules first, ``name.v`` last).
     """
     directory.mkdir(parents=True, exist_ok=True)
     banner = "".join(f"-- {line}\n" for line in header.splitlines())
@@ -71,14 +79,37 @@ def convert_myhdl(
         if verilog:
             for signal, driven, read in marks:  # the VHDL conversion cleared them
                 signal._driven, signal._read = driven, read
-            _convert(
-                instance, "Verilog", directory / name, banner.replace("--", "//"), testbench=False
-            )
+            chosen = separate or (lambda _: False)
+            with separate_modules(instance, chosen, _module_text) as modules:
+                for module in modules:
+                    files.append(directory / f"{module.name}.v")
+                    files[-1].write_text(module.text)
+                _verilog(instance, directory / name, files[1], banner.replace("--", "//"))
             files.append(directory / f"{name}.v")
-            _indexed_part_selects(files[-1])
-            _negative_literals(files[-1])
-            _signed_constants(files[-1], files[1])
     return files
+
+
+def _verilog(instance: Any, stem: Path, vhdl: Path, header: str) -> None:
+    """Convert to ``stem.v``, mended where MyHDL's Verilog differs from its VHDL (`vhdl`)."""
+    _convert(instance, "Verilog", stem, header, testbench=False)
+    verilog = stem.with_suffix(".v")
+    _indexed_part_selects(verilog)
+    _negative_literals(verilog)
+    _signed_constants(verilog, vhdl)
+
+
+def _module_text(elaborate: Callable[[], Any], name: str) -> str:
+    """The Verilog of a separate module (`rfc.toolchain.modules`), converted in a scratch folder.
+
+    Its instance names start afresh, so that they do not depend on what came before it.
+    """
+    start_new_design()
+    instance = elaborate()
+    with tempfile.TemporaryDirectory(prefix="rfc-module-") as scratch:
+        stem = Path(scratch) / name
+        _convert(instance, "VHDL", stem, "", std_logic_ports=True)
+        _verilog(instance, stem, stem.with_suffix(".vhd"), "")
+        return stem.with_suffix(".v").read_text()
 
 
 def _convert(instance: Any, hdl: str, stem: Path, header: str, **options: bool) -> None:

@@ -97,6 +97,8 @@ def _synthesized(files: Sequence[Path], top: str) -> Iterator[Path]:
 
 #: Changes whenever the way a module is mapped or timed changes, so old cache entries go unused.
 _FLOW = "synth_xilinx -family xc7 -noiopad -abc9 -flatten, sta, boundary logic, v3"
+#: The same for a module that instantiates others (`module_estimate`'s `submodules`).
+_SUBMODULE_FLOW = "submodules as black boxes, out of sta, their ports' cones in the boundary, v2"
 #: How many modules are mapped at once (the development machines have two cores).
 WORKERS = 2
 #: The 7-series cell library with its delays (`sta` needs them; `synth_xilinx` keeps none).
@@ -111,6 +113,22 @@ _FLIP_FLOPS = "FDRE,FDSE,FDCE,FDPE"
 _BOUNDARY = (
     f"o:* %ci*:-{_FLIP_FLOPS}[D,CE,R,S,CLR,PRE] i:* %co*:-{_FLIP_FLOPS}[Q]:-BUFG %u t:BUFG %u"
 )
+
+
+def _boundary(submodules: Sequence[str]) -> str:
+    """`_BOUNDARY`, and the same cones at the ports of the instances of `submodules`.
+
+    A module that instantiates others (mapped on their own, black boxes here) has paths that
+    cross into them: the cells between its registers and their ports are boundary logic too,
+    and the instances stay in it, so that flattening the boundary netlists joins the paths.
+    """
+    cones = [_BOUNDARY]
+    for name in submodules:
+        cones.append(
+            f"t:{name} %ci*:-{_FLIP_FLOPS}[D,CE,R,S,CLR,PRE] %u "
+            f"t:{name} %co*:-{_FLIP_FLOPS}[Q]:-BUFG %u"
+        )
+    return " ".join(cones)
 
 
 @dataclass(frozen=True)
@@ -135,12 +153,17 @@ def cache_directory() -> Path:
     return cache_root() / "verilog"
 
 
-def module_estimate(verilog: Path, top: str) -> ModuleEstimate:
+def module_estimate(verilog: Path, top: str, submodules: Sequence[Path] = ()) -> ModuleEstimate:
     """Map one Verilog file to the 7-series with `-abc9`; count and time its module `top`.
 
+    The modules `top` instantiates are in `submodules`, one per file named after it: they are
+    mapped on their own, so here they are black boxes, their cells not counted and their ports
+    taken as registered (`logic_timing` joins the paths across them).
+
     The figures and the boundary logic are cached by the file's content with the module's
-    name left out, and Yosys's version: the same block under another name (a slice, a busy
-    watch or a manager of a sibling system, named after its project) is mapped once.
+    name left out, the submodules' files, and Yosys's version: the same block under another
+    name (a slice, a busy watch or a manager of a sibling system, named after its project) is
+    mapped once.
 
     Raises:
         RuntimeError: Yosys is missing or fails.
@@ -148,14 +171,32 @@ def module_estimate(verilog: Path, top: str) -> ModuleEstimate:
     digest = hashlib.sha256()
     for part in (_FLOW, _yosys_version(), *canonical_lines(_renamed(verilog.read_text(), top))):
         digest.update(part.encode() + b"\n")
+    if submodules:
+        digest.update(_SUBMODULE_FLOW.encode() + b"\n")
+    for submodule in submodules:
+        digest.update(submodule.read_bytes())
     entry = cache_directory() / f"{digest.hexdigest()}.json"
     anonymous = entry.with_suffix(".v")  # the boundary logic, its module named _ANONYMOUS
     if not (entry.is_file() and anonymous.is_file()):
         entry.parent.mkdir(parents=True, exist_ok=True)
         with _claimed(entry):
             if not (entry.is_file() and anonymous.is_file()):  # nobody mapped it meanwhile
-                _map_module(verilog, top, entry, anonymous)
+                _map_module(_Module(verilog, top, tuple(submodules)), entry, anonymous)
     return _read_entry(entry, _named(anonymous, top))
+
+
+@dataclass(frozen=True)
+class _Module:
+    """A module to map: its file, its name, the files of the modules it instantiates."""
+
+    verilog: Path
+    top: str
+    submodules: tuple[Path, ...] = ()
+
+    def read(self) -> str:
+        """The Yosys commands that read it, its submodules as black boxes."""
+        libraries = "".join(f"read_verilog -lib {f}; " for f in self.submodules)
+        return f"{libraries}read_verilog {self.verilog}"
 
 
 #: The name a cached module goes by, whatever the name it was mapped under.
@@ -190,28 +231,29 @@ def _claimed(entry: Path) -> Iterator[None]:
             fcntl.flock(lock, fcntl.LOCK_UN)
 
 
-def _map_module(verilog: Path, top: str, entry: Path, anonymous: Path) -> None:
-    """Map, count and time `top` of `verilog`; publish its figures and boundary logic.
+def _map_module(module: _Module, entry: Path, anonymous: Path) -> None:
+    """Map, count and time `module`; publish its figures and boundary logic.
 
     The figures go to `entry`, the boundary logic to `anonymous` with the module renamed
     `_ANONYMOUS` (`_named` gives it back under any name).
     """
+    top = module.top
     with tempfile.TemporaryDirectory(prefix="rfc-synth-") as scratch:
         work = Path(scratch)
         report = work / _STAT
         try:
-            _run_yosys(estimate_script(verilog, top, work), str(verilog))
+            _run_yosys(_estimate_script(module, work), str(module.verilog))
         except _Abc9BlockRamError:
             # Yosys 0.23's abc9 aborts on every block RAM: count with the plain mapping, time
             # with the memories in distributed RAM (docs/performance.md, "Timing").
             _run_yosys(
-                f"read_verilog {verilog}; synth_xilinx -family xc7 -noiopad -flatten -top {top}; "
+                f"{module.read()}; synth_xilinx -family xc7 -noiopad -flatten -top {top}; "
                 f"tee -q -o {report} stat -json",
-                str(verilog),
+                str(module.verilog),
             )
             _run_yosys(
-                f"{_mapping(verilog, top, '-nobram')}; {_timing_and_boundary(top, work)}",
-                str(verilog),
+                f"{_mapping(module, '-nobram')}; {_timing_and_boundary(module, work)}",
+                str(module.verilog),
             )
         resources = _resources(report)
         timing = parse_sta((work / _STA).read_text())
@@ -227,43 +269,55 @@ def _map_module(verilog: Path, top: str, entry: Path, anonymous: Path) -> None:
 _STAT, _STA, _BOUNDARY_LOGIC = "stat.json", "sta.log", "boundary.v"
 
 
-def estimate_script(verilog: Path, top: str, work: Path) -> str:
+def estimate_script(verilog: Path, top: str, work: Path, submodules: Sequence[Path] = ()) -> str:
     """The Yosys script `module_estimate` runs on module `top` of `verilog` (no block RAM).
 
     It writes into `work` the cell counts (``stat.json``), `sta`'s report (``sta.log``) and
     the boundary logic (``boundary.v``). tools/profile_estimate.py runs it with ``yosys -d``
     to see where a module's mapping spends its time.
     """
+    return _estimate_script(_Module(verilog, top, tuple(submodules)), work)
+
+
+def _estimate_script(module: _Module, work: Path) -> str:
     return (
-        f"{_mapping(verilog, top)}; tee -q -o {work / _STAT} stat -json; "
-        f"{_timing_and_boundary(top, work)}"
+        f"{_mapping(module)}; tee -q -o {work / _STAT} stat -json; "
+        f"{_timing_and_boundary(module, work)}"
     )
 
 
-def _mapping(verilog: Path, top: str, options: str = "") -> str:
-    """Read `verilog` and map its module `top` to the 7-series with `-abc9`."""
+def _mapping(module: _Module, options: str = "") -> str:
+    """Read `module` and map it to the 7-series with `-abc9`."""
     synth = " ".join(filter(None, ("synth_xilinx -family xc7 -noiopad -abc9 -flatten", options)))
-    return f"read_verilog {verilog}; {synth} -top {top}"
+    return f"{module.read()}; {synth} -top {module.top}"
 
 
-def _timing_and_boundary(top: str, work: Path) -> str:
-    """Time the mapped `top` into ``work/sta.log``; keep its boundary logic in ``boundary.v``."""
+def _timing_and_boundary(module: _Module, work: Path) -> str:
+    """Time the mapped `module` into ``work/sta.log``; keep its boundary logic in ``boundary.v``."""
+    submodules = [f.stem for f in module.submodules]
+    # the timing deleted the black boxes: their ports' directions steer the cones again
+    libraries = "".join(f"read_verilog -lib {f}; " for f in module.submodules)
     return (
-        f"{_timing_commands(top, work / _STA)}; "
-        f"select -set boundary {_BOUNDARY}; setattr -set keep 1 @boundary; "
+        f"{_timing_commands(module.top, work / _STA, submodules)}; {libraries}"
+        f"select -set boundary {_boundary(submodules)}; setattr -set keep 1 @boundary; "
         f"delete c:* @boundary %d; opt_clean; write_verilog -noattr {work / _BOUNDARY_LOGIC}"
     )
 
 
-def estimate_modules(modules: Sequence[tuple[Path, str]]) -> list[ModuleEstimate]:
+def estimate_modules(
+    modules: Sequence[tuple[Path, str]], submodules: Mapping[str, Sequence[Path]] | None = None
+) -> list[ModuleEstimate]:
     """`module_estimate` of each (file, module), `WORKERS` Yosys processes at a time.
 
-    The largest files start first: an accelerator's mapping takes minutes where the converters
-    take seconds, so the others fill the second worker around it instead of delaying its start.
+    `submodules` gives, by module name, the files of the modules it instantiates (none when
+    missing). The largest files start first: an accelerator's mapping takes minutes where the
+    converters take seconds, so the others fill the second worker around it instead of
+    delaying its start.
     """
+    children = submodules or {}
     with ThreadPoolExecutor(max_workers=WORKERS) as pool:
         started = {
-            module: pool.submit(module_estimate, *module)
+            module: pool.submit(module_estimate, *module, children.get(module[1], ()))
             for module in sorted(modules, key=lambda m: m[0].stat().st_size, reverse=True)
         }
         return [started[module].result() for module in modules]
@@ -340,22 +394,28 @@ def estimate_timing(files: Sequence[Path], top: str) -> TimingPath | None:
     """
     with _synthesized(files, top) as verilog:
         log = verilog.parent / "sta.log"
-        _run_yosys(f"{_mapping(verilog, top)}; {_timing_commands(top, log)}", top)
+        _run_yosys(f"{_mapping(_Module(verilog, top))}; {_timing_commands(top, log)}", top)
         return parse_sta(log.read_text())
 
 
-def _timing_commands(top: str, log: Path) -> str:
+def _timing_commands(top: str, log: Path, black_boxes: Sequence[str] = ()) -> str:
     """Time the netlist `synth_xilinx` just mapped, writing `sta`'s report to `log`.
 
     `synth_xilinx` leaves the cell library without the delays of carries and wide muxes, so
     `sta` would count them as free: the library is read again with its `specify` blocks (in
     place, rather than writing the netlist out and reading it back: for the largest modules
     that took minutes). Registers are named after the signals they drive, so that a path names
-    registers rather than ``$abc$123``.
+    registers rather than ``$abc$123``. The instances of `black_boxes` (submodules mapped on
+    their own) are left out of the timing only: a path into or out of one crosses into
+    another module, which `crossing_timing` times whole.
     """
+    sta = f"tee -q -o {log} sta"
+    if black_boxes:
+        instances = " ".join(f"t:{name}" for name in black_boxes)
+        sta = f"design -save mapped; delete {instances}; {sta}; design -load mapped"
     return (
         f"delete =A:blackbox =A:whitebox; {_CELLS}; hierarchy -top {top}; "
-        f"rename -wire {_REGISTERS}; tee -q -o {log} sta"
+        f"rename -wire {_REGISTERS}; {sta}"
     )
 
 

@@ -163,6 +163,15 @@ def block_key(
     return BlockKey(*describe(bound.arguments))
 
 
+def known_block(block: Any) -> bool:
+    """Whether an elaborated MyHDL block instance is a call of a known block function.
+
+    The Verilog holds each such block as a module of its own (`rfc.toolchain.modules`): the
+    blocks a core repeats, mapped once by `rfc build --estimate`.
+    """
+    return block.func in _KNOWN
+
+
 def blocks_in(instance: Any) -> tuple[BlockKey, ...]:
     """The known blocks of an elaborated MyHDL block instance, each once, in a stable order.
 

@@ -138,10 +138,12 @@ def whole_netlist(tmp_path_factory):
     return netlist
 
 
-def map_whole(source, top, mapped):
+def map_whole(source, top, mapped, submodules=()):
     """Map `source` with `module_estimate`'s mapping into `mapped`, every cell kept."""
+    libraries = "".join(f"read_verilog -lib {f}; " for f in submodules)
     script = (
-        f"read_verilog {source}; synth_xilinx -family xc7 -noiopad -abc9 -flatten -top {top}; "
+        f"{libraries}read_verilog {source}; "
+        f"synth_xilinx -family xc7 -noiopad -abc9 -flatten -top {top}; "
         f"rename -wire t:FD*; write_verilog -noattr {mapped}"  # registers named as rfc names them
     )
     subprocess.run([shutil.which("yosys") or "yosys", "-q", "-p", script], check=True)
@@ -170,6 +172,52 @@ def test_the_boundary_logic_times_a_logic_as_its_whole_flattened_netlist_does(
     assert logic_timing(parts, files["pair"], "pair") == flattened
     boundaries = sum(len(p.netlist.read_text()) for p in parts.values())
     assert boundaries < sum(len(n.read_text()) for n in netlists)
+
+
+#: The pair inside a block of its own, with the block's logic between them: the producer's
+#: unregistered output goes through the block's adder into the consumer's. The block is mapped
+#: with its two instances as black boxes, each instance on its own (`rfc.toolchain.modules`).
+NEST = """
+module nest (input clk, output [15:0] result);
+  wire [15:0] handed, mixed;
+  reg [15:0] bias;
+  always @(posedge clk) bias <= bias + 16'd3;
+  assign mixed = handed + bias;
+  producer make (.clk(clk), .out(handed));
+  consumer take (.clk(clk), .in(mixed), .result(result));
+endmodule
+"""
+SYSTEM = """
+module system (input clk, output [15:0] result);
+  nest inner (.clk(clk), .result(result));
+endmodule
+"""
+
+
+def test_a_path_through_a_block_and_its_submodules_is_timed_as_the_flattened_whole(
+    tmp_path, whole_netlist
+):
+    texts = {"producer": PRODUCER, "consumer": CONSUMER, "nest": NEST, "system": SYSTEM}
+    files = {name: tmp_path / f"{name}.v" for name in texts}
+    for name, text in texts.items():
+        files[name].write_text(text)
+    inside = [files["producer"], files["consumer"]]
+    nest = module_estimate(files["nest"], "nest", inside)
+    parts = {
+        "inner": nest,
+        "inner.make": module_estimate(files["producer"], "producer"),
+        "inner.take": module_estimate(files["consumer"], "consumer"),
+    }
+    assert nest.resources.ff == 16  # its own register; the submodules' cells are theirs
+    path = logic_timing(parts, files["system"], "system")
+    assert path is not None
+    assert path.start.startswith("inner.make.count")
+    assert path.end.startswith("inner.take.result")
+    # the oracle: every module's whole netlist, flattened together
+    netlists = [whole_netlist(files[m], m) for m in ("producer", "consumer")]
+    netlists.append(map_whole(files["nest"], "nest", tmp_path / "nest.whole.v", inside))
+    assert path == crossing_timing(netlists, files["system"], "system")
+    assert path.delay_ps > max(p.timing.delay_ps for p in parts.values() if p.timing)
 
 
 LOG = """

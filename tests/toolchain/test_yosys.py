@@ -58,14 +58,15 @@ def test_the_largest_module_is_mapped_first_and_figures_come_back_in_the_order_a
         files.append((path, name))
     started = []
 
-    def recorded(verilog, top):
-        started.append(top)
+    def recorded(verilog, top, submodules=()):
+        started.append((top, tuple(submodules)))
         return top
 
     monkeypatch.setattr(yosys, "module_estimate", recorded)
     monkeypatch.setattr(yosys, "WORKERS", 1)
-    assert yosys.estimate_modules(files) == ["small", "large", "medium"]
-    assert started == ["large", "medium", "small"]
+    inside = {"large": [files[0][0]]}  # the large module instantiates the small one
+    assert yosys.estimate_modules(files, inside) == ["small", "large", "medium"]
+    assert started == [("large", (files[0][0],)), ("medium", ()), ("small", ())]
 
 
 def test_a_block_under_another_name_is_mapped_once_and_named_as_each_instance_wants(

@@ -21,6 +21,7 @@ from typing import Any
 from myhdl import ToVerilogWarning, ToVHDLWarning
 
 from rfc.ir.infrastructure import Converter
+from rfc.lib.arith.timing import known_block
 from rfc.lib.converters.buffers import Buffer, buffered_ports, buffered_publisher, buffers_of
 from rfc.lib.converters.build import generate, publisher_top, subscriber_top
 from rfc.lib.converters.guard import frame_guard, guard_ports
@@ -95,7 +96,9 @@ def convert(
     def conversion() -> list[Path]:
         with elaboration(), _quiet_conversion():
             instance = top(**port_signals(ports))
-            files: list[Path] = convert_myhdl(instance, name, directory, header=f"{name}: {what}")
+            files: list[Path] = convert_myhdl(
+                instance, name, directory, header=f"{name}: {what}", separate=known_block
+            )
         return files
 
     return _component(entity_of(name, ports), converted(name, directory, conversion), top)

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import warnings
 from collections import Counter
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
 
 from rfc.errors import RfcError
@@ -20,7 +20,14 @@ from rfc.ir.model import Design
 from rfc.lower.artifacts import ReportSection
 from rfc.lower.report import markdown_table
 from rfc.lower.system.generate import SystemHardware
-from rfc.toolchain import ModuleEstimate, Resources, TimingPath, estimate_modules, logic_timing
+from rfc.toolchain import (
+    ModuleEstimate,
+    Resources,
+    TimingPath,
+    estimate_modules,
+    logic_timing,
+    module_instances,
+)
 from rfc.toolchain.sta import ROUTING_FACTOR
 
 
@@ -68,12 +75,31 @@ def estimate_logic(system: SystemHardware) -> LogicEstimate:
             hint="run `ghdl --synth --std=08` on the accelerator's sources to see why",
         )
     files = {path.stem: path for path in system.verilog}
-    copies = Counter(entity.name for _, entity, _ in system.netlist.instances())
+    submodules = {name: module_instances(path.read_text(), files) for name, path in files.items()}
+    top_level = [(label, entity.name) for label, entity, _ in system.netlist.instances()]
+    instances = dict(_instances_below(top_level, submodules))
+    copies = Counter(instances.values())
     names = list(copies)
-    modules = dict(zip(names, estimate_modules([(files[n], n) for n in names]), strict=True))
-    instances = {label: modules[entity.name] for label, entity, _ in system.netlist.instances()}
-    timing = logic_timing(instances, files[system.top], system.top)
+    children = {n: [files[m] for m in dict.fromkeys(m for _, m in submodules[n])] for n in names}
+    estimates = estimate_modules([(files[n], n) for n in names], children)
+    modules = dict(zip(names, estimates, strict=True))
+    by_label = {label: modules[name] for label, name in instances.items()}
+    timing = logic_timing(by_label, files[system.top], system.top)
     return LogicEstimate(modules, copies, timing)
+
+
+def _instances_below(
+    instances: list[tuple[str, str]], submodules: Mapping[str, list[tuple[str, str]]]
+) -> Iterator[tuple[str, str]]:
+    """Every (label, module) of a hierarchy, labels joined by dots (``accelerator.cordic0``).
+
+    An accelerator holds the rfc.lib blocks it repeats as modules of their own
+    (`rfc.toolchain.modules`), each mapped once.
+    """
+    for label, module in instances:
+        yield label, module
+        below = [(f"{label}.{sub}", name) for sub, name in submodules.get(module, [])]
+        yield from _instances_below(below, submodules)
 
 
 def resources_section(system: SystemHardware, estimate: LogicEstimate) -> ReportSection:

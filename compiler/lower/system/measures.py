@@ -8,6 +8,9 @@ system took 35, 373 and 28 cycles on its 8-bit bus.
 from __future__ import annotations
 
 import math
+from collections import Counter
+from collections.abc import Sequence
+from pathlib import Path
 
 from rfc.ir.model import AcceleratorKind, BlockKind, Design
 from rfc.lib.devices import bram36
@@ -20,6 +23,7 @@ from rfc.lower.system.latency import (
     publisher_latency,
     subscriber_latency,
 )
+from rfc.toolchain import module_instances
 
 #: An accelerator's latency target in cycles (docs/architecture.md, Targets).
 ACCELERATOR_TARGET = 120
@@ -106,6 +110,7 @@ def buffers_section(system: SystemHardware) -> ReportSection:
 def verilog_section(design: Design, system: SystemHardware) -> ReportSection:
     """Where each module of ``hw/verilog/`` comes from, and what has no Verilog."""
     rows: list[list[object]] = []
+    separate: list[str] = []
     for accelerator in design.accelerators:
         hardware = system.accelerators.get(accelerator.name)
         if hardware is None:
@@ -118,6 +123,7 @@ def verilog_section(design: Design, system: SystemHardware) -> ReportSection:
             rows.append([f"`{accelerator.name}`", "HLS", "none: Vitis HLS exports the core"])
         else:
             rows.append([f"`{accelerator.name}`", "MyHDL", "MyHDL's Verilog back-end"])
+            separate += _separate_modules(hardware.components[0].verilog)
     lines = [
         "`hw/verilog/` holds the logic in Verilog with the module, port and signal names of "
         "the VHDL: MyHDL's Verilog back-end for the converters, manager, scheduler and "
@@ -125,4 +131,19 @@ def verilog_section(design: Design, system: SystemHardware) -> ReportSection:
         "",
         *markdown_table(["accelerator", "written in", "Verilog"], rows, (False, False, False)),
     ]
+    if separate:
+        lines += [
+            "",
+            "In the Verilog, each rfc.lib arithmetic block of a MyHDL accelerator is a module "
+            "of its own, written once per parameter set (the VHDL stays one entity), so that "
+            "`--estimate` maps it once: " + ", ".join(separate) + ".",
+        ]
     return ReportSection("Verilog", tuple(lines))
+
+
+def _separate_modules(verilog: Sequence[Path]) -> list[str]:
+    """The modules an accelerator's Verilog holds besides its own, with their instances."""
+    *modules, own = verilog
+    names = [module.stem for module in modules]
+    copies = Counter(name for _, name in module_instances(own.read_text(), names))
+    return [f"`{name}` x{copies[name]} in `{own.stem}`" for name in names]

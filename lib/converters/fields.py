@@ -15,6 +15,7 @@ from rfc.lib.converters.tables import Piece, pieces, tables
 from rfc.lib.types import Instances, SignalLike
 
 
+# A register loaded as its chunk passes; `buffers.split` is wires: alike in shape only.
 @block
 def run_register(
     clk: SignalLike,
@@ -92,6 +93,7 @@ def field_register(
     return blocks
 
 
+# A plan, its ports and the control's signals, as every part of a converter takes them.
 @block
 def field_captures(
     plan: Plan,

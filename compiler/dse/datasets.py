@@ -13,11 +13,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import numpy.typing as npt
 
 from rfc.errors import RfcError, did_you_mean
-
-IntArray = npt.NDArray[np.int64]
+from rfc.lib.schedulers.model.tree import IntArray, Replicated
 
 #: Numbers of accelerators the paper evaluates.
 SIZES = (2, 4, 8, 16, 32, 64, 128, 256)
@@ -87,9 +85,8 @@ def dataset(name: str) -> Dataset:
         ) from None
 
 
-# int[R, N] arrays sized by their shape, like lib's SchedulerTree: a draw of traffic, no tree.
 @dataclass(frozen=True)
-class Traffic:
+class Traffic(Replicated):
     """Timing of N publishers on R replicates: int[R, N] each.
 
     Attributes:
@@ -101,16 +98,6 @@ class Traffic:
     transfer: IntArray
     idle: IntArray
     deadline: IntArray
-
-    @property
-    def replicates(self) -> int:
-        """R."""
-        return int(self.transfer.shape[0])
-
-    @property
-    def n(self) -> int:
-        """N."""
-        return int(self.transfer.shape[1])
 
 
 def draw(data: Dataset, n: int, replicates: int, seed: int = 0) -> Traffic:

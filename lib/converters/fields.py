@@ -15,6 +15,7 @@ from rfc.lib.converters.tables import Piece, pieces, tables
 from rfc.lib.types import Instances, SignalLike
 
 
+# A register loaded as its chunk passes; `buffers.split` is wires: alike in shape only.
 @block
 def run_register(
     clk: SignalLike,
@@ -26,14 +27,26 @@ def run_register(
     lane: int,
     target: SignalLike,
 ) -> Instances:
-    """Capture `target` from the bytes of `data` from lane `lane` up when chunk `at` passes."""
-    low = 8 * lane
-    high = low + len(target)
+    """Capture `target` from the bytes of `data` from lane `lane` up when chunk `at` passes.
 
-    @always_seq(clk.posedge, reset=rst)
-    def capture() -> None:
-        if fire and rc == at:
-            target.next = data[high:low]
+    A one-bit `target` is a bool, one byte on the wire: it takes whether that byte is not zero
+    (rosbags reads any nonzero byte as true).
+    """
+    low = 8 * lane
+    if len(target) == 1:
+
+        @always_seq(clk.posedge, reset=rst)
+        def capture() -> None:
+            if fire and rc == at:
+                target.next = data[low + 8 : low] != 0
+
+    else:
+        high = low + len(target)
+
+        @always_seq(clk.posedge, reset=rst)
+        def capture() -> None:
+            if fire and rc == at:
+                target.next = data[high:low]
 
     return capture
 
@@ -50,13 +63,15 @@ def field_register(
 ) -> Instances:
     """Capture `target` from its runs: bytes ``first ..`` from lanes ``lane ..`` of chunk ``rc``.
 
-    A field in one run is captured straight into `target`; one in several has a register per
-    run (reset to its part of `target`'s reset value), joined into `target` by wires, so it
-    still changes on the clock edge its last run is captured on. The join is a process of its
-    own rather than `wiring.follow`: MyHDL numbers a block's instances across the process, and
-    more `follow`s here would rename those of every block built after the converters.
+    A field in one run (a bool among them) is captured straight into `target`; one in several
+    has a register per run (reset to its part of `target`'s reset value), joined into `target`
+    by wires, so it still changes on the clock edge its last run is captured on. The join is a
+    process of its own rather than `wiring.follow`: MyHDL numbers a block's instances across the
+    process, and more `follow`s here would rename those of every block built after the
+    converters.
     """
-    assert len(target) == 8 * sum(run.count for run in runs), "a byte of the field per bit octet"
+    octets = sum(run.count for run in runs)
+    assert len(target) == 8 * octets or len(target) == octets == 1, "a byte per octet, or a bool"
     if len(runs) == 1:
         return run_register(clk, rst, fire, rc, data, runs[0].rc, runs[0].lane, target)
     reset = int(target.val)
@@ -78,28 +93,7 @@ def field_register(
     return blocks
 
 
-@block
-def bool_register(
-    clk: SignalLike,
-    rst: SignalLike,
-    fire: SignalLike,
-    rc: SignalLike,
-    data: SignalLike,
-    at: int,
-    lane: int,
-    target: SignalLike,
-) -> Instances:
-    """Capture a bool: whether the byte on `lane` of chunk `at` is not zero."""
-    low = 8 * lane
-
-    @always_seq(clk.posedge, reset=rst)
-    def capture() -> None:
-        if fire and rc == at:
-            target.next = data[low + 8 : low] != 0
-
-    return capture
-
-
+# A plan, its ports and the control's signals, as every part of a converter takes them.
 @block
 def field_captures(
     plan: Plan,
@@ -135,11 +129,5 @@ def field_captures(
             else:
                 continue
             runs = tuple(pieces(slot, t.base[pc], plan.width))
-            if slot.field is not None and slot.field.element_type == "bool":
-                first = runs[0]
-                registers.append(
-                    bool_register(clk, rst, fire, rc, data, first.rc, first.lane, target)
-                )
-            else:
-                registers.append(field_register(clk, rst, fire, rc, data, runs, target))
+            registers.append(field_register(clk, rst, fire, rc, data, runs, target))
     return registers

@@ -28,7 +28,7 @@ class SchedulerModel:
     def __init__(self, tree: SchedulerTree) -> None:
         self.tree = tree
         self.n = tree.n
-        self.batch = tree.batch
+        self.batch = tree.replicates
         self.transfer = tree.transfer
         self.deadline = tree.deadline
         self._structure = tree.structure

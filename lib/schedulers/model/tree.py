@@ -23,8 +23,24 @@ IntArray = npt.NDArray[np.int64]
 ALGORITHM_CODES = {algorithm: code for code, algorithm in enumerate(Algorithm)}
 
 
+class Replicated:
+    """R and N of a record whose `transfer` (like its other per-input arrays) is int[R, N]."""
+
+    transfer: IntArray
+
+    @property
+    def replicates(self) -> int:
+        """R: the replicates."""
+        return int(self.transfer.shape[0])
+
+    @property
+    def n(self) -> int:
+        """N: the inputs."""
+        return int(self.transfer.shape[1])
+
+
 @dataclass(frozen=True, eq=False)
-class SchedulerTree:
+class SchedulerTree(Replicated):
     """Structure and constants of a scheduler (one algorithm or a composition), on R replicates.
 
     Attributes:
@@ -54,16 +70,6 @@ class SchedulerTree:
     node_deadline: IntArray
     transfer: IntArray
     deadline: IntArray
-
-    @property
-    def n(self) -> int:
-        """Number of scheduler inputs."""
-        return int(self.transfer.shape[1])
-
-    @property
-    def batch(self) -> int:
-        """Number of replicates R."""
-        return int(self.transfer.shape[0])
 
     @property
     def structure(self) -> tuple[IntArray, ...]:

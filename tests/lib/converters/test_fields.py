@@ -130,3 +130,57 @@ def test_synthesis_sees_no_shifter_in_a_field_register(width, offset, size, tmp_
     assert yosys is not None, "tools/setup.sh installs Yosys"
     run = subprocess.run([yosys, "-q", "-p", script], capture_output=True, text=True, check=False)
     assert run.returncode == 0, run.stdout + run.stderr
+
+
+@pytest.mark.parametrize(("width", "offset"), [(8, 5), (4, 0), (1, 2)])
+def test_a_bool_is_whether_its_byte_is_not_zero(width, offset):
+    """rosbags reads any nonzero byte as true: a bool's one-bit register takes just that."""
+    rng = random.Random(f"bool {width} {offset}")
+    last = BASE + offset // width + 1
+    beats = [
+        (
+            rng.random() < 0.7,
+            rng.randrange(last + 1),
+            bytes(rng.choice((0, 1, 2, 255)) for _ in range(width)),
+        )
+        for _ in range(60)
+    ]
+    seen: list[bool] = []
+
+    @block
+    def bench():
+        clk = Signal(bool(0))
+        rst = ResetSignal(0, active=1, isasync=False)
+        fire = Signal(bool(0))
+        rc = Signal(intbv(0, min=0, max=16))
+        data = Signal(intbv(0)[8 * width :])
+        target = Signal(bool(0))
+        dut = field_register(clk, rst, fire, rc, data, _runs(width, offset, 1), target)
+
+        @always(delay(5))
+        def clock():
+            clk.next = not clk
+
+        @instance
+        def drive():
+            rst.next = 1
+            yield clk.posedge
+            rst.next = 0
+            for on, at, chunk in beats:
+                fire.next, rc.next, data.next = on, at, int.from_bytes(chunk, "little")
+                yield clk.posedge
+                yield clk.negedge
+                seen.append(bool(target.val))
+            raise StopSimulation
+
+        return dut, clock, drive
+
+    run = bench()
+    run.run_sim(quiet=1)
+    run.quit_sim()
+    expected, value = [], False
+    for on, at, chunk in beats:
+        if on and at == BASE + offset // width:
+            value = chunk[offset % width] != 0
+        expected.append(value)
+    assert seen == expected

@@ -13,9 +13,7 @@ import contextlib
 import hashlib
 import os
 import re
-import shutil
 import subprocess
-import tempfile
 from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -24,7 +22,7 @@ from xml.etree import ElementTree
 from cocotb_tools.config import libs_dir
 from cocotb_tools.runner import Runner, get_runner
 
-from rfc.toolchain.cache import cache_root
+from rfc.toolchain.cache import cache_root, publish_build, scratch_build, used
 from rfc.toolchain.convert import canonical_lines
 from rfc.toolchain.ghdl import STANDARD, Backend
 from rfc.toolchain.ghdl import _vhdl as vhdl_files  # the files GHDL analyzes, as it picks them
@@ -97,32 +95,26 @@ def compile_logic(logic: CompiledLogic, sources: Sequence[Path]) -> None:
     Raises:
         CosimError: GHDL cannot compile them (a bug in the generator).
     """
+    used(logic.folder)
     if logic.compiled:
         return
-    logic.folder.parent.mkdir(parents=True, exist_ok=True)
-    partial = Path(tempfile.mkdtemp(prefix=f"{logic.folder.name}.", dir=logic.folder.parent))
     runner = get_runner("ghdl")
-    try:  # nothing half-compiled is left behind, even when interrupted
-        with ghdl_environment(logic.backend):
-            try:
-                runner.build(
-                    sources=vhdl_files(sources),
-                    hdl_toplevel=logic.toplevel,
-                    build_dir=partial,
-                    build_args=list(_GHDL_OPTIONS),
-                    always=True,
-                    log_file=partial / "build.log",
-                )
-            except (SystemExit, RuntimeError) as exc:
-                log = partial / "build.log"
-                tail = log.read_text(errors="replace")[-4000:] if log.is_file() else str(exc)
-                raise CosimError(f"GHDL could not compile {logic.toplevel}:\n{tail}") from None
-        for code in partial.glob("*.o"):  # linked into the program: only its size left
-            code.unlink()
-        with contextlib.suppress(OSError):  # another process may have compiled it meanwhile
-            partial.rename(logic.folder)
-    finally:
-        shutil.rmtree(partial, ignore_errors=True)
+    # nothing half-compiled is left behind, even when interrupted
+    with scratch_build(logic.folder) as partial, ghdl_environment(logic.backend):
+        try:
+            runner.build(
+                sources=vhdl_files(sources),
+                hdl_toplevel=logic.toplevel,
+                build_dir=partial,
+                build_args=list(_GHDL_OPTIONS),
+                always=True,
+                log_file=partial / "build.log",
+            )
+        except (SystemExit, RuntimeError) as exc:
+            log = partial / "build.log"
+            tail = log.read_text(errors="replace")[-4000:] if log.is_file() else str(exc)
+            raise CosimError(f"GHDL could not compile {logic.toplevel}:\n{tail}") from None
+        publish_build(partial, logic.folder)
 
 
 @contextlib.contextmanager
@@ -277,13 +269,11 @@ def _verilator_model(verilog: Sequence[Path], toplevel: str) -> Path:
     for path in verilog:
         for line in canonical_lines(path.read_text()):
             digest.update(line.encode() + b"\n")
-    model = model_cache() / digest.hexdigest()[:32]
+    model = used(model_cache() / digest.hexdigest()[:32])
     if (model / toplevel).is_file():
         return model
-    model.parent.mkdir(parents=True, exist_ok=True)
-    partial = Path(tempfile.mkdtemp(prefix=f"{model.name}.", dir=model.parent))
     runner = get_runner("verilator")
-    with verilator_environment():
+    with scratch_build(model) as partial, verilator_environment():
         try:
             runner.build(
                 sources=list(verilog),
@@ -296,9 +286,7 @@ def _verilator_model(verilog: Sequence[Path], toplevel: str) -> Path:
             log = partial / "build.log"
             tail = log.read_text(errors="replace")[-4000:] if log.is_file() else str(exc)
             raise CosimError(f"Verilator could not build {toplevel}:\n{tail}") from None
-    with contextlib.suppress(OSError):  # another process may have built it meanwhile
-        partial.rename(model)
-    return model if (model / toplevel).is_file() else partial
+        return publish_build(partial, model)
 
 
 def _check_results(results: Path, log: Path) -> int:

@@ -13,12 +13,11 @@ import contextlib
 import hashlib
 import os
 import subprocess
-import tempfile
 from collections.abc import Iterator, Mapping, Sequence
 from functools import cache
 from pathlib import Path
 
-from rfc.toolchain.cache import cache_root
+from rfc.toolchain.cache import cache_root, publish_build, scratch_build, used
 from rfc.toolchain.convert import canonical_lines
 
 #: Options every Verilator build of rfc's Verilog takes: MyHDL writes Verilog-2005, whose
@@ -107,20 +106,16 @@ def run_testbench(
     for path in sources:
         for line in canonical_lines(Path(path).read_text()):
             digest.update(line.encode() + b"\n")
-    model = model_cache() / f"tb-{digest.hexdigest()[:32]}"
+    model = used(model_cache() / f"tb-{digest.hexdigest()[:32]}")
     binary = model / f"V{top}"
     if not binary.is_file():
-        model.parent.mkdir(parents=True, exist_ok=True)
-        partial = Path(tempfile.mkdtemp(prefix=f"{model.name}.", dir=model.parent))
-        with verilator_environment():
-            command = ["verilator", *options, "-Mdir", str(partial), *map(str, sources)]
-            result = subprocess.run(command, capture_output=True, text=True, check=False)
-        if result.returncode != 0:
-            raise VerilatorError(f"Verilator could not build {top}:\n{result.stderr[-4000:]}")
-        with contextlib.suppress(OSError):  # another process may have built it meanwhile
-            partial.rename(model)
-        if not binary.is_file():
-            binary = partial / f"V{top}"
+        with scratch_build(model) as partial:
+            with verilator_environment():
+                command = ["verilator", *options, "-Mdir", str(partial), *map(str, sources)]
+                result = subprocess.run(command, capture_output=True, text=True, check=False)
+            if result.returncode != 0:
+                raise VerilatorError(f"Verilator could not build {top}:\n{result.stderr[-4000:]}")
+            publish_build(partial, model)
     workdir.mkdir(parents=True, exist_ok=True)
     arguments = [f"+{name}={value}" for name, value in plusargs.items()]
     result = subprocess.run(
@@ -156,29 +151,26 @@ def build_stream_engine(
     for path in sources:
         for line in canonical_lines(Path(path).read_text()):
             digest.update(line.encode() + b"\n")
-    model = model_cache() / f"engine-{digest.hexdigest()[:32]}"
+    model = used(model_cache() / f"engine-{digest.hexdigest()[:32]}")
     if (model / "Vdut").is_file():
         return model / "Vdut"
-    model.parent.mkdir(parents=True, exist_ok=True)
-    partial = Path(tempfile.mkdtemp(prefix=f"{model.name}.", dir=model.parent))
-    (partial / "engine_ports.h").write_text(header)
-    with verilator_environment():
-        command = [
-            "verilator",
-            *options,
-            "-CFLAGS",
-            f"-I{partial}",
-            "-Mdir",
-            str(partial),
-            str(testbench),
-            *map(str, sources),
-        ]
-        result = subprocess.run(command, capture_output=True, text=True, check=False)
-    if result.returncode != 0:
-        raise VerilatorError(f"Verilator could not build {top}:\n{result.stderr[-4000:]}")
-    with contextlib.suppress(OSError):  # another process may have built it meanwhile
-        partial.rename(model)
-    return model / "Vdut" if (model / "Vdut").is_file() else partial / "Vdut"
+    with scratch_build(model) as partial:
+        (partial / "engine_ports.h").write_text(header)
+        with verilator_environment():
+            command = [
+                "verilator",
+                *options,
+                "-CFLAGS",
+                f"-I{partial}",
+                "-Mdir",
+                str(partial),
+                str(testbench),
+                *map(str, sources),
+            ]
+            result = subprocess.run(command, capture_output=True, text=True, check=False)
+        if result.returncode != 0:
+            raise VerilatorError(f"Verilator could not build {top}:\n{result.stderr[-4000:]}")
+        return publish_build(partial, model) / "Vdut"
 
 
 def model_cache() -> Path:

@@ -58,12 +58,11 @@ def _expected(beats, offset: int, size: int, reset: int) -> list[int]:
     return history
 
 
-@pytest.mark.parametrize(("width", "offset", "size"), LAYOUTS)
-def test_a_field_holds_the_bytes_of_its_chunks_from_the_edge_they_pass(width, offset, size):
-    rng = random.Random(f"{width} {offset} {size}")
-    reset = rng.getrandbits(8 * size)
-    last = BASE + (offset + size - 1) // width + 1
-    beats = [(rng.random() < 0.7, rng.randrange(last + 1), rng.randbytes(width)) for _ in range(60)]
+def captured(width: int, runs, target, beats) -> list[int]:
+    """Simulate `field_register` into `target`: its value after the reset, then after each beat.
+
+    The target is cleared before the reset, which must bring its own initial value back.
+    """
     seen: list[int] = []
 
     @block
@@ -73,8 +72,7 @@ def test_a_field_holds_the_bytes_of_its_chunks_from_the_edge_they_pass(width, of
         fire = Signal(bool(0))
         rc = Signal(intbv(0, min=0, max=16))
         data = Signal(intbv(0)[8 * width :])
-        target = Signal(intbv(reset)[8 * size :])
-        dut = field_register(clk, rst, fire, rc, data, _runs(width, offset, size), target)
+        dut = field_register(clk, rst, fire, rc, data, runs, target)
 
         @always(delay(5))
         def clock():
@@ -83,7 +81,7 @@ def test_a_field_holds_the_bytes_of_its_chunks_from_the_edge_they_pass(width, of
         @instance
         def drive():
             rst.next = 1
-            target.next = 0  # the reset must bring its own value back
+            target.next = 0
             yield clk.posedge
             rst.next = 0
             yield clk.negedge
@@ -100,6 +98,16 @@ def test_a_field_holds_the_bytes_of_its_chunks_from_the_edge_they_pass(width, of
     run = bench()
     run.run_sim(quiet=1)
     run.quit_sim()
+    return seen
+
+
+@pytest.mark.parametrize(("width", "offset", "size"), LAYOUTS)
+def test_a_field_holds_the_bytes_of_its_chunks_from_the_edge_they_pass(width, offset, size):
+    rng = random.Random(f"{width} {offset} {size}")
+    reset = rng.getrandbits(8 * size)
+    last = BASE + (offset + size - 1) // width + 1
+    beats = [(rng.random() < 0.7, rng.randrange(last + 1), rng.randbytes(width)) for _ in range(60)]
+    seen = captured(width, _runs(width, offset, size), Signal(intbv(reset)[8 * size :]), beats)
     assert seen == [reset, *_expected(beats, offset, size, reset)]
 
 
@@ -145,42 +153,10 @@ def test_a_bool_is_whether_its_byte_is_not_zero(width, offset):
         )
         for _ in range(60)
     ]
-    seen: list[bool] = []
-
-    @block
-    def bench():
-        clk = Signal(bool(0))
-        rst = ResetSignal(0, active=1, isasync=False)
-        fire = Signal(bool(0))
-        rc = Signal(intbv(0, min=0, max=16))
-        data = Signal(intbv(0)[8 * width :])
-        target = Signal(bool(0))
-        dut = field_register(clk, rst, fire, rc, data, _runs(width, offset, 1), target)
-
-        @always(delay(5))
-        def clock():
-            clk.next = not clk
-
-        @instance
-        def drive():
-            rst.next = 1
-            yield clk.posedge
-            rst.next = 0
-            for on, at, chunk in beats:
-                fire.next, rc.next, data.next = on, at, int.from_bytes(chunk, "little")
-                yield clk.posedge
-                yield clk.negedge
-                seen.append(bool(target.val))
-            raise StopSimulation
-
-        return dut, clock, drive
-
-    run = bench()
-    run.run_sim(quiet=1)
-    run.quit_sim()
+    seen = captured(width, _runs(width, offset, 1), Signal(bool(0)), beats)
     expected, value = [], False
     for on, at, chunk in beats:
         if on and at == BASE + offset // width:
             value = chunk[offset % width] != 0
         expected.append(value)
-    assert seen == expected
+    assert seen == [False, *expected]

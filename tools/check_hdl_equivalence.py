@@ -24,6 +24,7 @@ import json
 import os
 import re
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -199,6 +200,8 @@ def main() -> int:
         dump_vhdl(Path(args.dump[0]), Path(args.dump[1]))
         return 0
     specs = args.specs or example_specs()
+    # a kill (SIGTERM) unwinds like Ctrl-C, so the base worktree is unregistered below
+    signal.signal(signal.SIGTERM, lambda *_: sys.exit(143))
     scratch = Path(tempfile.mkdtemp(prefix="rfc-equiv-"))
     try:
         base = base_checkout(args.base, scratch)

@@ -38,9 +38,8 @@ def fixed_dot(
 ) -> Instances:
     """``Σ a[i] * b[i]`` in `fmt`, rounded half up and saturated (`dot.dot_product`).
 
-    Ports: clock and handshakes named as in `rfc.lib.arith.pipeline`; `a` and `b` (inputs, as
-    many of each) and `result` (output) are raw integers of `fmt`, the operands' and result's
-    format; `b` holds signals, or the constant raw integers `constant_dot` has checked.
+    Ports as in `rfc.lib.arith.pipeline`; `a` and `b` (inputs, as many of each) and `result`
+    (output); `b` holds signals, or the constant raw integers `constant_dot` has checked.
     """
     advance, valid_out = Signal(bool(0)), Signal(bool(0))
     datapath = dot_pipeline(clk, rst, advance, in_valid, a, b, valid_out, result, fmt)
@@ -63,8 +62,7 @@ def constant_dot(
 ) -> Instances:
     """``Σ a[i] * coefficients[i]`` in `fmt`: `fixed_dot` with constant second operands.
 
-    Ports: clock and handshakes named as in `rfc.lib.arith.pipeline`; `a` (inputs) and `result`
-    (output) are raw integers of `fmt`, the operands' and result's format.
+    Ports as in `rfc.lib.arith.pipeline`; `a` (inputs) and `result` (output).
 
     Args:
         coefficients: Raw integers of `fmt`, one per input.

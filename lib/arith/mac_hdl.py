@@ -50,8 +50,7 @@ def fixed_multiply(
 ) -> Instances:
     """``product = a * b`` in `fmt`, rounded half up and saturated (`rfc.lib.arith.mac.multiply`).
 
-    Ports: clock and handshakes named as in `rfc.lib.arith.pipeline`; `a`, `b` (inputs) and
-    `product` (output) are raw integers of `fmt`, the operands' and result's format.
+    Ports as in `rfc.lib.arith.pipeline`; `a`, `b` (inputs) and `product` (output).
     """
     a1, b1 = fmt.signal(), fmt.signal()
     full, held = signed_signal(2 * fmt.width), signed_signal(2 * fmt.width)
@@ -99,8 +98,7 @@ def fixed_mac(
     (`rfc.lib.arith.mac.multiply_accumulate` of that prefix); sums of up to
     ``2**MAC_GUARD_BITS`` products never wrap.
 
-    Ports: clock and handshakes named as in `rfc.lib.arith.pipeline`; `a`, `b` (inputs) and
-    `total` (output) are raw integers of `fmt`, the operands' and result's format; `first`
+    Ports as in `rfc.lib.arith.pipeline`; `a`, `b` (inputs) and `total` (output); `first`
     (input) starts a new sum with this pair.
     """
     advance = Signal(bool(0))

@@ -13,7 +13,8 @@ arguments:
 * `in_ready` (output): the block takes them on this cycle when `in_valid` is high;
 * `out_valid` (output): the block's data outputs hold a result;
 * `out_ready` (input): the consumer takes the result on this cycle;
-* `advance` (input, handshake-free datapaths): the pipeline moves on this cycle.
+* `advance` (input, handshake-free datapaths): the pipeline moves on this cycle;
+* in a block with a `fmt` argument, its operand and result ports carry raw integers of `fmt`.
 """
 
 from __future__ import annotations

@@ -15,7 +15,7 @@ import hashlib
 import inspect
 import re
 from collections import Counter
-from collections.abc import Callable, Collection, Iterator
+from collections.abc import Callable, Collection, Hashable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Any
@@ -76,25 +76,27 @@ def separate_modules(
 ) -> Iterator[list[SeparateModule]]:
     """While inside, the `chosen` sub-blocks of `instance` that repeat convert as instances.
 
-    Each chosen block is converted with `convert`; those whose module text comes out the same
-    for two calls or more (the same function at the same parameters) become instances of one
-    module, and the others stay inline: a module used once is mapped once anyway, and Yosys
-    optimizes it better with the logic around it. Yields the distinct modules (write their
-    text beside the parent's). The walk does not enter a chosen block, so its own sub-blocks
-    stay in its module. On exit every block is as it was.
+    Calls of one block function at the same parameters (the same plain arguments, signals of
+    the same types) become instances of one module, converted once with `convert`; a block
+    called once stays inline: its module would be mapped once anyway, and Yosys optimizes it
+    better with the logic around it. Yields the distinct modules (write their text beside the
+    parent's). The walk does not enter a chosen block, so its own sub-blocks stay in its
+    module. On exit every block is as it was.
     """
-    calls = [(block, _module_of(block, convert)) for block in _chosen_blocks(instance, chosen)]
-    copies = Counter(module.name for _, module in calls)
-    modules: dict[str, SeparateModule] = {}
+    calls = [(block, _arguments(block)) for block in _chosen_blocks(instance, chosen)]
+    keys = [_call_key(block, arguments) for block, arguments in calls]
+    repeated = {key for key, count in Counter(keys).items() if count > 1}
+    converted: dict[Hashable, SeparateModule] = {}
     saved: list[tuple[Any, tuple[Any, Any, Any, Any]]] = []
     try:
-        for block, module in calls:
-            if copies[module.name] < 2:
-                continue  # mapped once either way, and better with the glue around it
-            modules.setdefault(module.name, module)
+        for (block, arguments), key in zip(calls, keys, strict=True):
+            if key not in repeated:
+                continue
+            if key not in converted:
+                converted[key] = _module_of(block, arguments, convert)
             saved.append((block, (block.verilog_code, block.subs, block.sigdict, block.memdict)))
-            _instantiate(block, module)
-        yield list(modules.values())
+            _instantiate(block, arguments, converted[key])
+        yield list({module.name: module for module in converted.values()}.values())
     finally:
         for block, (code, subs, sigdict, memdict) in saved:
             block.verilog_code, block.subs, block.sigdict, block.memdict = (
@@ -122,9 +124,20 @@ def _arguments(block: Any) -> dict[str, Any]:
     return dict(bound.arguments)
 
 
-def _module_of(block: Any, convert: ModuleConverter) -> SeparateModule:
-    """Elaborate `block`'s function afresh at its arguments and convert it on its own."""
-    arguments = _arguments(block)
+def _call_key(block: Any, arguments: dict[str, Any]) -> Hashable:
+    """What a call's module depends on: its function, its plain arguments, its signals' types."""
+    return (block.func, tuple((name, _shape(value)) for name, value in arguments.items()))
+
+
+def _shape(value: Any) -> Hashable:
+    if not isinstance(value, _Signal):
+        return repr(value)
+    reset = (value.active, value.isasync) if isinstance(value, ResetSignal) else None
+    return (type(value._init).__name__, len(value), value.min, value.max, int(value._init), reset)
+
+
+def _module_of(block: Any, arguments: dict[str, Any], convert: ModuleConverter) -> SeparateModule:
+    """Elaborate `block`'s function afresh at its `arguments` and convert it on its own."""
     fresh = {n: _fresh(v) if isinstance(v, _Signal) else v for n, v in arguments.items()}
     decorated = next(d for d in myhdl_simulator._blocks if d.func is block.func)
     text = convert(lambda: decorated(**fresh), _PLACEHOLDER)
@@ -157,9 +170,8 @@ def module_instances(text: str, modules: Collection[str]) -> list[tuple[str, str
 _INSTANCE = re.compile(r"^(\w+) (\w+) \($", re.M)
 
 
-def _instantiate(block: Any, module: SeparateModule) -> None:
+def _instantiate(block: Any, arguments: dict[str, Any], module: SeparateModule) -> None:
     """Have MyHDL write an instance of `module` for `block`, its ports marked as used."""
-    arguments = _arguments(block)
     connections = ",\n".join(f"    .{port}(${port})" for port, _ in module.ports)
     code = f"{module.name} {block.name} (\n{connections}\n);"
     for port, output in module.ports:

@@ -195,8 +195,11 @@ class _Module:
 
     def read(self) -> str:
         """The Yosys commands that read it, its submodules as black boxes."""
-        libraries = "".join(f"read_verilog -lib {f}; " for f in self.submodules)
-        return f"{libraries}read_verilog {self.verilog}"
+        return f"{self.black_boxes()}read_verilog {self.verilog}"
+
+    def black_boxes(self) -> str:
+        """The Yosys commands that read its submodules' ports (as black boxes)."""
+        return "".join(f"read_verilog -lib {f}; " for f in self.submodules)
 
 
 #: The name a cached module goes by, whatever the name it was mapped under.
@@ -296,9 +299,8 @@ def _timing_and_boundary(module: _Module, work: Path) -> str:
     """Time the mapped `module` into ``work/sta.log``; keep its boundary logic in ``boundary.v``."""
     submodules = [f.stem for f in module.submodules]
     # the timing deleted the black boxes: their ports' directions steer the cones again
-    libraries = "".join(f"read_verilog -lib {f}; " for f in module.submodules)
     return (
-        f"{_timing_commands(module.top, work / _STA, submodules)}; {libraries}"
+        f"{_timing_commands(module.top, work / _STA, submodules)}; {module.black_boxes()}"
         f"select -set boundary {_boundary(submodules)}; setattr -set keep 1 @boundary; "
         f"delete c:* @boundary %d; opt_clean; write_verilog -noattr {work / _BOUNDARY_LOGIC}"
     )

@@ -13,6 +13,10 @@ install_simulators() {
     # GHDL's llvm back-end compiles the logic `rfc sim` runs to a native program: about twice
     # as fast as the mcode one Debian's ghdl brings (docs/performance.md).
     command -v ghdl-llvm >/dev/null 2>&1 || missing+=(ghdl-llvm)
+    # The tests run mcode (tests/conftest.py): the suite analyzes hundreds of logics once each,
+    # where llvm's compile of each costs seconds to minutes. apt satisfies ghdl with whichever
+    # back-end comes in the same install, so mcode is asked for by name.
+    command -v ghdl-mcode >/dev/null 2>&1 || missing+=(ghdl-mcode)
     command -v yosys >/dev/null 2>&1 || missing+=(yosys)
     # tclsh runs the generated Vivado/Vitis scripts under recording stand-ins in the tests.
     command -v tclsh >/dev/null 2>&1 || missing+=(tcl)

@@ -8,6 +8,8 @@ from pathlib import Path
 import pytest
 from hypothesis import HealthCheck, settings
 
+from rfc.toolchain.verilator import compiler_cache
+
 ROOT = Path(__file__).resolve().parent.parent
 SHARED_DATA = Path(os.environ.get("RFC_SHARED_DATA", ROOT.parent / "shared" / "data"))
 
@@ -24,6 +26,11 @@ settings.load_profile("rfc")
 # mcode's analysis is cheaper than llvm's compile; tests/cli/test_sim_ghdl_cache.py and
 # tests/toolchain/test_ghdl_*.py run llvm itself and check it gives mcode's bytes.
 os.environ.setdefault("GHDL_BACKEND", "mcode")
+
+# Tests that keep their compiled models apart (their own RFC_CACHE_DIR) still share the objects
+# every Verilator build compiles alike: ccache answers by content, it cannot mix results.
+for _key, _value in compiler_cache().items():
+    os.environ.setdefault(_key, _value)
 
 
 def shared_file(relative: str) -> Path:

@@ -81,9 +81,8 @@ def verilator_environment() -> Iterator[None]:
     flags = ["CFG_CXXFLAGS_PCH_I=-include"]
     if (ccache := _ccache()) is not None:
         flags.append(f"OBJCACHE={ccache}")
-        if "CCACHE_DIR" not in os.environ:  # rfc's own: the run-time objects and a few models
-            os.environ["CCACHE_DIR"] = str(cache_root() / "ccache")
-            os.environ["CCACHE_MAXSIZE"] = "1G"
+        if "CCACHE_DIR" not in os.environ:
+            os.environ.update(compiler_cache())
         os.environ["CCACHE_BASEDIR"] = str(model_cache())
     os.environ["MAKEFLAGS"] = " ".join(flags)
     try:
@@ -94,6 +93,14 @@ def verilator_environment() -> Iterator[None]:
                 os.environ.pop(key, None)
             else:
                 os.environ[key] = value
+
+
+def compiler_cache() -> dict[str, str]:
+    """The environment of rfc's own ccache: ``$RFC_CACHE_DIR/ccache``, 1 GB at most.
+
+    ccache answers by the content of a compilation, so any build may share it.
+    """
+    return {"CCACHE_DIR": str(cache_root() / "ccache"), "CCACHE_MAXSIZE": "1G"}
 
 
 def _ccache() -> Path | None:

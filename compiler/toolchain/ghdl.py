@@ -22,9 +22,7 @@ class GhdlError(RuntimeError):
 
 
 def _ghdl(args: Sequence[str], workdir: Path) -> str:
-    executable = shutil.which("ghdl")
-    if executable is None:
-        raise GhdlError("ghdl is not installed; run tools/setup.sh")
+    executable = _ghdl_executable()
     workdir.mkdir(parents=True, exist_ok=True)
     result = subprocess.run(
         [executable, *args], cwd=workdir, capture_output=True, text=True, check=False
@@ -78,23 +76,49 @@ def fastest_backend() -> Backend:
     Raises:
         GhdlError: GHDL is not installed.
     """
-    executable = shutil.which("ghdl")
-    if executable is None:
-        raise GhdlError("ghdl is not installed; run tools/setup.sh")
+    executable = _ghdl_executable()
     chosen = os.environ.get("GHDL_BACKEND", "")
     beside = [n for n in BACKENDS if os.access(Path(executable).parent / f"ghdl-{n}", os.X_OK)]
     for name in [*([chosen] if chosen in BACKENDS else beside), ""]:
-        result = subprocess.run(
-            [executable, "--version"],
-            capture_output=True,
-            text=True,
-            check=False,
-            env={**os.environ, "GHDL_BACKEND": name},
-        )
-        found = next((n for n, text in _GENERATORS.items() if text in result.stdout), None)
-        if found is not None and name in (found, ""):
-            return Backend(found, result.stdout.splitlines()[0])
+        backend = _probe(executable, name)
+        if backend is not None:
+            return backend
     raise GhdlError(f"cannot tell the back-end of {executable}; run tools/setup.sh")
+
+
+@functools.cache
+def backend_named(name: str) -> Backend | None:
+    """Back-end `name` (``llvm``, ``gcc``, ``mcode``) if this GHDL has it, else None.
+
+    Whatever ``GHDL_BACKEND`` says: for a run that knows which one suits it (a long
+    simulation, llvm).
+
+    Raises:
+        GhdlError: GHDL is not installed.
+    """
+    return _probe(_ghdl_executable(), name) if name in BACKENDS else None
+
+
+def _ghdl_executable() -> str:
+    executable = shutil.which("ghdl")
+    if executable is None:
+        raise GhdlError("ghdl is not installed; run tools/setup.sh")
+    return executable
+
+
+def _probe(executable: str, name: str) -> Backend | None:
+    """The back-end ``ghdl`` runs under ``GHDL_BACKEND=name`` if it is that one (any, for "")."""
+    result = subprocess.run(
+        [executable, "--version"],
+        capture_output=True,
+        text=True,
+        check=False,
+        env={**os.environ, "GHDL_BACKEND": name},
+    )
+    found = next((n for n, text in _GENERATORS.items() if text in result.stdout), None)
+    if found is not None and name in (found, ""):
+        return Backend(found, result.stdout.splitlines()[0])
+    return None
 
 
 def _vhdl(files: Sequence[Path]) -> list[Path]:

@@ -16,6 +16,8 @@ from pathlib import Path
 from typing import Any
 
 from rfc.toolchain import run_cocotb
+from rfc.toolchain.cocotb_sim import CompiledLogic, compile_logic, compiled_logic
+from rfc.toolchain.ghdl import backend_named
 
 
 @dataclass(frozen=True)
@@ -44,14 +46,31 @@ def signed(pattern: int, width: int) -> int:
 
 
 def _run(
-    sources: Sequence[Path], top: str, bench: str, job: dict[str, Any], build: Path, seed: int
+    sources: Sequence[Path],
+    top: str,
+    bench: str,
+    job: dict[str, Any],
+    build: Path,
+    seed: int,
+    compiled: bool = False,
 ) -> dict[str, Any]:
     build.mkdir(parents=True, exist_ok=True)
     job_file = build / "job.json"
     result_file = build / "result.json"
     job_file.write_text(json.dumps({**job, "result": str(result_file)}))
-    run_cocotb(sources, top, bench, build / "sim", env={"RFC_JOB": str(job_file)}, seed=seed)
+    program = _program(sources, top) if compiled else None
+    env = {"RFC_JOB": str(job_file)}
+    run_cocotb(sources, top, bench, build / "sim", env=env, seed=seed, compiled=program)
     return json.loads(result_file.read_text())
+
+
+def _program(sources: Sequence[Path], top: str) -> CompiledLogic:
+    """`top` compiled by GHDL's llvm back-end, once per content (tools/setup.sh installs it)."""
+    backend = backend_named("llvm")
+    assert backend is not None, "GHDL's llvm back-end is missing: run tools/setup.sh"
+    logic = compiled_logic(sources, top, backend)
+    compile_logic(logic, sources)
+    return logic
 
 
 def run_combinational(
@@ -80,6 +99,7 @@ def run_handshake(
     backpressure: float = 0.3,
     seed: int = 1,
     timeout_cycles: int = 10_000,
+    compiled: bool = False,
 ) -> HandshakeRun:
     """Stream `inputs` through `top` (in_valid/in_ready, out_valid/out_ready) and collect results.
 
@@ -95,6 +115,9 @@ def run_handshake(
         backpressure: Probability of `out_ready` being low on a cycle.
         seed: Seed of the bench's random idle and backpressure.
         timeout_cycles: Cycles without progress after which the bench fails (a hang).
+        compiled: Run the logic compiled by GHDL's llvm back-end instead of mcode's: about 3
+            times the cycles per second of a large block, for a compile of seconds (kept by
+            content, so every run of the same logic shares it). For runs of a minute or more.
     """
     job = {
         "inputs": {k: list(v) for k, v in inputs.items()},
@@ -105,5 +128,5 @@ def run_handshake(
         "seed": seed,
         "timeout": timeout_cycles,
     }
-    result = _run(sources, top, "tests.support.handshake_bench", job, build, seed)
+    result = _run(sources, top, "tests.support.handshake_bench", job, build, seed, compiled)
     return HandshakeRun(result["outputs"], result["latencies"], result["accepted"])

@@ -6,7 +6,7 @@ import subprocess
 
 import pytest
 
-from rfc.toolchain.ghdl import fastest_backend
+from rfc.toolchain.ghdl import backend_named, fastest_backend
 
 
 @pytest.fixture(autouse=True)
@@ -37,3 +37,13 @@ def test_ghdl_backend_names_another(monkeypatch):
     assert backend.name == "mcode"
     assert not backend.compiles
     assert "mcode code generator" in generator("mcode")
+
+
+def test_a_back_end_asked_for_by_name_is_that_one_whatever_ghdl_backend_says(monkeypatch):
+    monkeypatch.setenv("GHDL_BACKEND", "mcode")
+    backend_named.cache_clear()
+    llvm = backend_named("llvm")
+    assert llvm is not None
+    assert llvm.name == "llvm"
+    assert llvm.version == generator("llvm").splitlines()[0]
+    assert backend_named("nvc") is None

@@ -13,6 +13,7 @@ import math
 import numpy as np
 import pytest
 
+from rfc.lib.converters.toplevel import elaboration
 from rfc.lib.fixed import bits_to_float, float_to_bits
 from rfc.toolchain import convert_myhdl
 from tests.conftest import shared_file
@@ -70,7 +71,9 @@ def with_out_of_domain(quaternions: np.ndarray) -> np.ndarray:
 
 
 def cosimulate(tmp_path, core: Core, quaternions: np.ndarray, seed: int):
-    files = convert_myhdl(core.block(*core_arguments(core_ports())), "quat_to_euler", tmp_path)
+    with elaboration():
+        instance = core.block(*core_arguments(core_ports()))
+        files = convert_myhdl(instance, "quat_to_euler", tmp_path, verilog=False)
     expected = expected_bits(core, quaternions)
     run = run_handshake(
         files,
@@ -80,6 +83,7 @@ def cosimulate(tmp_path, core: Core, quaternions: np.ndarray, seed: int):
         tmp_path,
         expected=expected,
         seed=seed,
+        compiled=True,
     )
     assert run.outputs == expected
     assert_latency(core, run.latencies)

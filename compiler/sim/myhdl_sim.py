@@ -18,6 +18,7 @@ from typing import Any
 
 from myhdl import ResetSignal, Signal, StopSimulation, block, delay, instance, intbv
 
+from rfc.lib.converters.toplevel import elaboration
 from rfc.messages.rosbags_adapter import BagMessage
 from rfc.runtime.arrivals import IDLE_FRACTION, ArrivalClock
 from rfc.runtime.core import Published, Runtime
@@ -99,7 +100,8 @@ def simulate_with_myhdl(
 
         return logic, clock, drive
 
-    bench().run_sim(quiet=1)
+    with elaboration():  # MyHDL's own elaboration reads the source context of every caller
+        bench().run_sim(quiet=1)
     if settings.warnings is not None:
         settings.warnings.extend(processor.busy.warnings)
     runtime.finish()

@@ -12,6 +12,7 @@ from typing import Any
 
 from myhdl import Signal, StopSimulation, block, delay, instance
 
+from rfc.lib.converters.toplevel import elaboration
 from tests.support.cosim import HandshakeRun
 
 
@@ -96,5 +97,6 @@ def simulate_stream(
         dut = block_function(*arguments)
         return dut, run
 
-    bench().run_sim(quiet=True)
+    with elaboration():  # MyHDL's own elaboration reads every caller's source context
+        bench().run_sim(quiet=True)
     return HandshakeRun(seen, latencies, accepted)

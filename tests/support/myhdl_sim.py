@@ -6,6 +6,7 @@ import numpy as np
 from myhdl import block, delay, instance
 
 from rfc.dse.trace import Trace, bits_to_int, one_hot_index
+from rfc.lib.converters.toplevel import elaboration
 from rfc.lib.schedulers.hardware import scheduler_top, top_ports
 from rfc.lib.schedulers.spec import AnySchedulerSpec
 
@@ -42,7 +43,8 @@ def simulate_myhdl(spec: AnySchedulerSpec, trace: Trace) -> np.ndarray:
 
         return dut, drive
 
-    sim = bench()
-    sim.run_sim(quiet=1)
-    sim.quit_sim()
+    with elaboration():  # MyHDL's own elaboration reads every caller's source context
+        sim = bench()
+        sim.run_sim(quiet=1)
+        sim.quit_sim()
     return np.asarray(grants)

@@ -33,17 +33,12 @@ __all__ = [
 ]
 
 
-# The HLS adapter's (`rfc.lib.hls.adapter`); a buffer's own words are cut with `part_of`.
-@block
 def split(word: SignalLike, low: int, target: SignalLike) -> Instances:
-    """Drive `target` with the bits of `word` from `low` up."""
-    high = low + len(target)
+    """Drive `target` with the bits of `word` from `low` up: `part_of`, as wide as `target`.
 
-    @always_comb
-    def extract() -> None:
-        target.next = word[high:low]
-
-    return extract
+    The HLS adapter (`rfc.lib.hls.adapter`) cuts its held streams' words with it.
+    """
+    return part_of(word, low, len(target), False, target)
 
 
 @block

@@ -15,7 +15,6 @@ from rfc.lib.converters.tables import Piece, pieces, tables
 from rfc.lib.types import Instances, SignalLike
 
 
-# A register loaded as its chunk passes; `buffers.split` is wires: alike in shape only.
 @block
 def run_register(
     clk: SignalLike,

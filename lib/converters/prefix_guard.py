@@ -195,7 +195,9 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
         # the checker starts afresh for every frame (a register: no glitch reaches its reset)
         c_rst.next = rst == rst.active or state != storing or decided
 
-    # Stores a beat as `frame_guard`'s control does; each control also clears what it stores.
+    # Stores a beat as `frame_guard`'s control does: a step of each guard's own state machine,
+    # whose other states clear what it stores. Shared, it would change both guards' VHDL,
+    # which the equivalence checker cannot prove (a guard holds a subscriber).
     @always_seq(clk.posedge, reset=rst)
     def control() -> None:
         done = False  # the frame is over: back to STORE, the buffer empty

@@ -26,6 +26,7 @@ from rfc.runtime.protocol import Chunk
 from rfc.runtime.stall import StallWatch, largest_output, pending_work
 from rfc.sim.busy import BusyWatch
 from rfc.sim.settings import ReplaySettings
+from rfc.toolchain.convert import transient_signals
 
 MyhdlFactory = Callable[..., Any]
 
@@ -64,6 +65,20 @@ def simulate_with_myhdl(
     Raises:
         StallError: The logic stalled (`rfc.runtime.stall`).
     """
+    # MyHDL would otherwise keep the replay's signals, and reset them after every later run.
+    with transient_signals():
+        return _replay(factory, bus_width, runtime, messages, clock_mhz, settings, busy)
+
+
+def _replay(
+    factory: MyhdlFactory,
+    bus_width: int,
+    runtime: Runtime,
+    messages: Iterable[BagMessage],
+    clock_mhz: float,
+    settings: ReplaySettings,
+    busy: tuple[str, ...],
+) -> list[Published]:
     lanes = bus_width // 8
     ports: dict[str, Any] = {
         "aclk": Signal(bool(0)),

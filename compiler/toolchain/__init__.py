@@ -19,6 +19,7 @@ _MODULES = {
     "run_cocotb": "cocotb_sim",
     "convert_myhdl": "convert",
     "start_new_design": "convert",
+    "transient_signals": "convert",
     "module_instances": "modules",
     "GhdlError": "ghdl",
     "VhdlEntity": "ghdl",

@@ -27,6 +27,7 @@ from rfc.lib.converters.toplevel import elaboration, port_signals, top_block
 from rfc.messages.codec import Values, default_values, encode
 from rfc.messages.limits import Limits
 from rfc.passes.check_hardware import subscriber_guard
+from rfc.toolchain.convert import transient_signals
 
 #: Cycles after which a measurement gives up (the block never answered).
 _LIMIT = 20_000
@@ -84,7 +85,8 @@ def gate_latency() -> int | None:
                 return waited
         return None
 
-    with elaboration():
+    # A build measures every converter: the bench's signals go with it (`transient_signals`).
+    with transient_signals(), elaboration():
         return _measure(top_block("latency_dut", [p.name for p in ports], drop_gate), ports, drive)
 
 
@@ -131,7 +133,8 @@ def accelerator_latency(
                 return waited
         return None
 
-    with elaboration():
+    # A build measures every converter: the bench's signals go with it (`transient_signals`).
+    with transient_signals(), elaboration():
         return _measure(top_block("latency_dut", [p.name for p in ports], function), ports, drive)
 
 

@@ -28,17 +28,8 @@ __all__ = [
     "buffered_ports",
     "buffered_publisher",
     "buffers_of",
-    "split",
     "stream_buffers",
 ]
-
-
-def split(word: SignalLike, low: int, target: SignalLike) -> Instances:
-    """Drive `target` with the bits of `word` from `low` up: `part_of`, as wide as `target`.
-
-    The HLS adapter (`rfc.lib.hls.adapter`) cuts its held streams' words with it.
-    """
-    return part_of(word, low, len(target), False, target)
 
 
 @block

@@ -23,10 +23,10 @@ from dataclasses import dataclass
 
 from myhdl import ConcatSignal, Signal, always_comb, always_seq, block, enum, intbv
 
-from rfc.lib.converters.buffers import split
 from rfc.lib.converters.fifo import fifo
 from rfc.lib.converters.wiring import follow, index_bit
 from rfc.lib.hls.streams import pack_elements, unpack_beats
+from rfc.lib.slice import part_of
 from rfc.lib.types import Instances, SignalLike
 
 
@@ -138,8 +138,8 @@ def hls_adapter(shape: AdapterShape, **ports: SignalLike) -> Instances:
         parts += [
             fifo(ports["clk"], ports["rst"], word, ports[f"{s}_tvalid"], ports[f"{s}_tready"],
                  shown, tvalid, tready, stream.depth),
-            split(shown, 0, tdata),
-            split(shown, stream.beat, tkeep),
+            part_of(shown, 0, stream.beat, False, tdata),
+            part_of(shown, stream.beat, keep, False, tkeep),
             unpack_beats(ports["clk"], ports["rst"], tdata, tkeep, tvalid, tready,
                          ports[f"{c}_dout"], ports[f"{c}_empty_n"], ports[f"{c}_read"]),
         ]  # fmt: skip

@@ -41,6 +41,8 @@ def _beats(transfer: bytes, lanes: int) -> list[tuple[int, int, bool]]:
     return beats
 
 
+# MyHDL would otherwise keep the replay's signals, and reset them after every later run.
+@transient_signals()
 def simulate_with_myhdl(
     factory: MyhdlFactory,
     bus_width: int,
@@ -65,20 +67,6 @@ def simulate_with_myhdl(
     Raises:
         StallError: The logic stalled (`rfc.runtime.stall`).
     """
-    # MyHDL would otherwise keep the replay's signals, and reset them after every later run.
-    with transient_signals():
-        return _replay(factory, bus_width, runtime, messages, clock_mhz, settings, busy)
-
-
-def _replay(
-    factory: MyhdlFactory,
-    bus_width: int,
-    runtime: Runtime,
-    messages: Iterable[BagMessage],
-    clock_mhz: float,
-    settings: ReplaySettings,
-    busy: tuple[str, ...],
-) -> list[Published]:
     lanes = bus_width // 8
     ports: dict[str, Any] = {
         "aclk": Signal(bool(0)),

@@ -5,6 +5,7 @@ from __future__ import annotations
 from functools import partial
 
 import pytest
+from myhdl import _simulator as myhdl_simulator
 
 from rfc.ir.pass_through import pass_through_routes
 from rfc.lower.runtime_plan import DesignPlan
@@ -68,3 +69,19 @@ def test_progress_is_told_every_message_offered_in_order(tmp_path):
         settings=ReplaySettings(drain_cycles=40, progress=told.append),
     )
     assert told == list(range(1, len(messages) + 1))
+
+
+def test_the_replay_leaves_no_signal_behind_in_myhdl(tmp_path):
+    """MyHDL resets every signal it knows after each run: a replay's must go with it."""
+    design = compiled(tmp_path, "pose_mixed.yaml")
+    plan = DesignPlan(design)
+    known = len(myhdl_simulator._signals)
+    simulate_with_myhdl(
+        partial(echo_logic, routes=route_table(design), cut_beats=0),
+        64,
+        Runtime(plan),
+        pose_messages(plan.types, 2),
+        clock_mhz=100.0,
+        settings=ReplaySettings(drain_cycles=40),
+    )
+    assert len(myhdl_simulator._signals) == known

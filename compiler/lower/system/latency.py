@@ -85,8 +85,7 @@ def gate_latency() -> int | None:
                 return waited
         return None
 
-    # A build measures every converter: the bench's signals go with it (`transient_signals`).
-    with transient_signals(), elaboration():
+    with elaboration():
         return _measure(top_block("latency_dut", [p.name for p in ports], drop_gate), ports, drive)
 
 
@@ -133,11 +132,12 @@ def accelerator_latency(
                 return waited
         return None
 
-    # A build measures every converter: the bench's signals go with it (`transient_signals`).
-    with transient_signals(), elaboration():
+    with elaboration():
         return _measure(top_block("latency_dut", [p.name for p in ports], function), ports, drive)
 
 
+# A build measures every converter; MyHDL would keep each bench's signals for the process's life.
+@transient_signals()
 def _measure(top: Any, ports: tuple[Port, ...] | list[Port], drive: Any) -> int | None:
     signals = port_signals(ports)
     result: list[int | None] = [None]

@@ -7,6 +7,7 @@ import re
 
 import numpy as np
 import pytest
+from myhdl import _simulator as myhdl_simulator
 
 from rfc.driver import compile_spec
 from rfc.lower.system.latency import gate_latency, guard_latency, subscriber_latency
@@ -52,6 +53,16 @@ def test_a_frame_guard_delays_a_frame_by_the_subscribers_parse_of_it(tmp_path, m
         offsets.add(cycles - subscriber_latency(converter, design.project.maxima, flat))
     assert len(offsets) == 1  # the same constant whatever the frame's length
     assert 0 < offsets.pop() <= 4
+
+
+def test_a_measurement_leaves_no_signal_behind_in_myhdl(tmp_path):
+    """A build measures every converter; MyHDL resets every signal it knows after each run."""
+    design = compile_spec(write_spec(tmp_path, spec_text("ROS2", 64, JOINTS),
+                                     pass__py=PASS_THROUGH))  # fmt: skip
+    (converter,) = design.infrastructure.subscribers
+    known = len(myhdl_simulator._signals)
+    assert subscriber_latency(converter, design.project.maxima) > 0
+    assert len(myhdl_simulator._signals) == known
 
 
 def test_a_drop_gate_adds_no_cycle():

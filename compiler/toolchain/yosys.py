@@ -24,7 +24,7 @@ import shutil
 import subprocess
 import tempfile
 import threading
-from collections.abc import Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from contextlib import contextmanager
 from dataclasses import dataclass
@@ -103,6 +103,9 @@ _SUBMODULE_FLOW = "submodules as black boxes, out of sta, their ports' cones in 
 WORKERS = 2
 #: The 7-series cell library with its delays (`sta` needs them; `synth_xilinx` keeps none).
 _CELLS = "read_verilog -lib -specify +/xilinx/cells_sim.v"
+#: The rest of the 7-series primitives (clock managers, transceivers, I/O serializers, …) as
+#: black boxes: `synth_xilinx` reads them first thing, after `_CELLS`.
+_OTHER_CELLS = "read_verilog -lib +/xilinx/cells_xtra.v"
 #: Cells that hold state: a path starts at their clock and ends at their inputs.
 _REGISTERS = "t:FD* t:DSP48E1 t:RAMB* t:SRL* t:RAM*"
 #: Flip-flops, whose data and control pins end a path and whose output starts one.
@@ -245,17 +248,21 @@ def _map_module(module: _Module, entry: Path, anonymous: Path) -> None:
         work = Path(scratch)
         report = work / _STAT
         try:
-            _run_yosys(_estimate_script(module, work), str(module.verilog))
+            _run_mapping(lambda cells: _estimate_script(module, work, cells), str(module.verilog))
         except _Abc9BlockRamError:
             # Yosys 0.23's abc9 aborts on every block RAM: count with the plain mapping, time
             # with the memories in distributed RAM (docs/performance.md, "Timing").
-            _run_yosys(
-                f"{module.read()}; synth_xilinx -family xc7 -noiopad -flatten -top {top}; "
-                f"tee -q -o {report} stat -json",
+            _run_mapping(
+                lambda cells: (
+                    f"{_mapping(module, cells=cells, abc9=False)}; tee -q -o {report} stat -json"
+                ),
                 str(module.verilog),
             )
-            _run_yosys(
-                f"{_mapping(module, '-nobram')}; {_timing_and_boundary(module, work)}",
+            _run_mapping(
+                lambda cells: (
+                    f"{_mapping(module, '-nobram', cells=cells)}; "
+                    f"{_timing_and_boundary(module, work)}"
+                ),
                 str(module.verilog),
             )
         resources = _resources(report)
@@ -282,17 +289,28 @@ def estimate_script(verilog: Path, top: str, work: Path, submodules: Sequence[Pa
     return _estimate_script(_Module(verilog, top, tuple(submodules)), work)
 
 
-def _estimate_script(module: _Module, work: Path) -> str:
+def _estimate_script(module: _Module, work: Path, cells: str = _CELLS) -> str:
     return (
-        f"{_mapping(module)}; tee -q -o {work / _STAT} stat -json; "
+        f"{_mapping(module, cells=cells)}; tee -q -o {work / _STAT} stat -json; "
         f"{_timing_and_boundary(module, work)}"
     )
 
 
-def _mapping(module: _Module, options: str = "") -> str:
-    """Read `module` and map it to the 7-series with `-abc9`."""
-    synth = " ".join(filter(None, ("synth_xilinx -family xc7 -noiopad -abc9 -flatten", options)))
-    return f"{module.read()}; {synth} -top {module.top}"
+def _mapping(module: _Module, options: str = "", cells: str = _CELLS, abc9: bool = True) -> str:
+    """Read `module` and map it to the 7-series, flattened (with `-abc9` unless told otherwise)."""
+    flow = " ".join(filter(None, ("-abc9" if abc9 else "", "-flatten", options)))
+    return f"{module.read()}; {_synth_xilinx(module.top, flow, cells)}"
+
+
+def _synth_xilinx(top: str, options: str, cells: str) -> str:
+    """`synth_xilinx -family xc7 -noiopad` with `options`, its first step reading `cells`.
+
+    That step (`begin`) reads the cell libraries and sets the top module; `_run_mapping` says
+    which libraries `cells` reads, and the script runs from its second step on.
+    """
+    synth = " ".join(filter(None, ("synth_xilinx -family xc7 -noiopad", options)))
+    synth = f"{synth} -top {top} -run prepare:"
+    return f"{cells}; hierarchy -check -top {top}; {synth}"
 
 
 def _timing_and_boundary(module: _Module, work: Path) -> str:
@@ -396,7 +414,10 @@ def estimate_timing(files: Sequence[Path], top: str) -> TimingPath | None:
     """
     with _synthesized(files, top) as verilog:
         log = verilog.parent / "sta.log"
-        _run_yosys(f"{_mapping(_Module(verilog, top))}; {_timing_commands(top, log)}", top)
+        module = _Module(verilog, top)
+        _run_mapping(
+            lambda cells: f"{_mapping(module, cells=cells)}; {_timing_commands(top, log)}", top
+        )
         return parse_sta(log.read_text())
 
 
@@ -438,6 +459,20 @@ def _publish(path: Path, text: str) -> None:
     partial.replace(path)
 
 
+def _run_mapping(script: Callable[[str], str], what: str) -> None:
+    """Run a mapping `script` given the commands that read the cell libraries it may use.
+
+    `synth_xilinx` reads 1.4 MB of other primitives' black boxes (`_OTHER_CELLS`) that no
+    generated logic instantiates, and carries them through every pass: 2 to 4 s of CPU per
+    module for the same cells and timing (tests/toolchain/test_yosys.py compares them). A
+    design that instantiates one of them (a user's VHDL) is mapped again with them.
+    """
+    try:
+        _run_yosys(script(_CELLS), what)
+    except _MissingModuleError:
+        _run_yosys(script(f"{_CELLS}; {_OTHER_CELLS}"), what)
+
+
 def _run_yosys(script: str, what: str) -> None:
     executable = shutil.which("yosys")
     if executable is None:
@@ -449,7 +484,13 @@ def _run_yosys(script: str, what: str) -> None:
         message = f"yosys failed on {what}:\n{result.stderr or result.stdout}"
         if "abc9" in script and "std::out_of_range" in result.stderr:
             raise _Abc9BlockRamError(message)
+        if "is not part of the design" in result.stderr:
+            raise _MissingModuleError(message)
         raise RuntimeError(message)
+
+
+class _MissingModuleError(RuntimeError):
+    """The design instantiates a module Yosys was not given (`hierarchy -check`)."""
 
 
 class _Abc9BlockRamError(RuntimeError):
@@ -469,11 +510,11 @@ def resources_of_verilog(verilog: Path | Sequence[Path], top: str, workdir: Path
     """Map a Verilog design with `synth_xilinx -family xc7` (no I/O buffers) and count cells."""
     report = workdir / "stat.json"
     files = [verilog] if isinstance(verilog, Path) else list(verilog)
-    script = (
-        f"read_verilog {' '.join(str(f) for f in files)}; "
-        f"synth_xilinx -family xc7 -noiopad -top {top}; tee -q -o {report} stat -json"
+    read = f"read_verilog {' '.join(str(f) for f in files)}"
+    _run_mapping(
+        lambda cells: f"{read}; {_synth_xilinx(top, '', cells)}; tee -q -o {report} stat -json",
+        str(verilog),
     )
-    _run_yosys(script, str(verilog))
     return _resources(report)
 
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from concurrent.futures import ThreadPoolExecutor
 
 from rfc.toolchain import convert_myhdl, crossing_timing, yosys
@@ -131,3 +132,53 @@ def test_a_module_with_a_block_ram_is_counted_in_block_ram_and_timed(tmp_path, m
     assert mapped.resources.lutram == 0
     assert mapped.timing is not None
     assert "module ram" in mapped.netlist.read_text()
+
+
+def test_mapping_without_the_other_primitives_gives_synth_xilinxs_own_netlist(tmp_path):
+    # synth_xilinx whole reads cells_xtra.v too; rfc leaves it out where nothing uses it
+    source = tmp_path / "counter.v"
+    source.write_text(COUNTER)
+    outputs = {}
+    for flow in ("whole", "rfc"):
+        work = tmp_path / flow
+        work.mkdir()
+        script = yosys.estimate_script(source, "counter", work)
+        assert "cells_xtra" not in script
+        if flow == "whole":
+            cells_first = f"{yosys._CELLS}; hierarchy -check -top counter; "
+            script = script.replace(cells_first, "").replace(" -run prepare:", "")
+            assert "prepare" not in script
+        yosys._run_yosys(script, flow)
+        outputs[flow] = [_numbered_alike((work / f).read_text()) for f in yosys_outputs]
+    assert outputs["rfc"] == outputs["whole"]
+
+
+#: What `estimate_script` writes: cell counts, the timing report, the boundary netlist.
+yosys_outputs = ("stat.json", "sta.log", "boundary.v")
+
+
+def _numbered_alike(text: str) -> str:
+    """Yosys' output with its running numbers left out (names ``$abc$2476$…``, step numbers).
+
+    Reading fewer libraries first changes only how far Yosys' counter of fresh names has run.
+    """
+    return re.sub(r"(?<=\$)\d+|^\d+\. ", "", text, flags=re.M)
+
+
+TEMPERATURE = """
+module temperature (input clk, output reg [15:0] sample);
+  wire [15:0] measured;
+  XADC adc (.DCLK(clk), .DO(measured));
+  always @(posedge clk) sample <= measured;
+endmodule
+"""
+
+
+def test_a_module_instantiating_another_7_series_primitive_is_mapped(tmp_path, monkeypatch):
+    # XADC is one of the primitives rfc reads only when a design instantiates one
+    monkeypatch.setenv("RFC_CACHE_DIR", str(tmp_path / "cache"))
+    source = tmp_path / "temperature.v"
+    source.write_text(TEMPERATURE)
+    mapped = yosys.module_estimate(source, "temperature")
+    assert mapped.resources.ff == 16
+    assert mapped.timing is not None

@@ -122,12 +122,17 @@ endmodule
 """
 
 
+def _estimated(tmp_path, monkeypatch, top: str, verilog: str) -> yosys.ModuleEstimate:
+    """`module_estimate` of module `top` of `verilog`, in a module cache of the test's own."""
+    monkeypatch.setenv("RFC_CACHE_DIR", str(tmp_path / "cache"))
+    source = tmp_path / f"{top}.v"
+    source.write_text(verilog)
+    return yosys.module_estimate(source, top)
+
+
 def test_a_module_with_a_block_ram_is_counted_in_block_ram_and_timed(tmp_path, monkeypatch):
     # Yosys 0.23's abc9 aborts on a block RAM: counted without it, timed in distributed RAM
-    monkeypatch.setenv("RFC_CACHE_DIR", str(tmp_path / "cache"))
-    source = tmp_path / "ram.v"
-    source.write_text(RAM)
-    mapped = yosys.module_estimate(source, "ram")
+    mapped = _estimated(tmp_path, monkeypatch, "ram", RAM)
     assert mapped.resources.bram >= 1
     assert mapped.resources.lutram == 0
     assert mapped.timing is not None
@@ -176,9 +181,6 @@ endmodule
 
 def test_a_module_instantiating_another_7_series_primitive_is_mapped(tmp_path, monkeypatch):
     # XADC is one of the primitives rfc reads only when a design instantiates one
-    monkeypatch.setenv("RFC_CACHE_DIR", str(tmp_path / "cache"))
-    source = tmp_path / "temperature.v"
-    source.write_text(TEMPERATURE)
-    mapped = yosys.module_estimate(source, "temperature")
+    mapped = _estimated(tmp_path, monkeypatch, "temperature", TEMPERATURE)
     assert mapped.resources.ff == 16
     assert mapped.timing is not None

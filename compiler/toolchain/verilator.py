@@ -147,7 +147,8 @@ def run_testbench(
     if not binary.is_file():
         with scratch_build(model) as partial:
             with verilator_environment():
-                command = ["verilator", *options, "-Mdir", str(partial), *map(str, sources)]
+                command = ["verilator", *options, *_build_jobs(), "-Mdir", str(partial)]
+                command += map(str, sources)
                 result = subprocess.run(command, capture_output=True, text=True, check=False)
             if result.returncode != 0:
                 raise VerilatorError(f"Verilator could not build {top}:\n{result.stderr[-4000:]}")
@@ -194,12 +195,22 @@ def build_stream_engine(
         (partial / "engine_ports.h").write_text(header)
         with verilator_environment():
             # the testbench finds engine_ports.h through make's ``-I.`` (the build folder)
-            command = ["verilator", *options, "-Mdir", str(partial), str(testbench)]
+            command = ["verilator", *options, *_build_jobs(), "-Mdir", str(partial)]
+            command.append(str(testbench))
             command += map(str, sources)
             result = subprocess.run(command, capture_output=True, text=True, check=False)
         if result.returncode != 0:
             raise VerilatorError(f"Verilator could not build {top}:\n{result.stderr[-4000:]}")
         return publish_build(partial, model) / "Vdut"
+
+
+def _build_jobs() -> list[str]:
+    """Verilator's options to compile a model's C++ files on every core this process may use.
+
+    Verilator's `--build` compiles one file at a time otherwise: a cold build of the quaternion
+    example's model took 59 s instead of 41 s on two cores. Not part of a model's cache key.
+    """
+    return ["--build-jobs", str(len(os.sched_getaffinity(0)))]
 
 
 def model_cache() -> Path:

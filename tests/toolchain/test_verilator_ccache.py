@@ -1,7 +1,8 @@
-"""Verilator's run-time library is compiled once a machine: later models take it from ccache."""
+"""Verilator models: its run-time library compiled once a machine, models kept by content."""
 
 from __future__ import annotations
 
+import os
 import subprocess
 
 from rfc.toolchain.verilator import _ccache, run_testbench
@@ -42,3 +43,16 @@ def test_a_second_model_takes_verilators_run_time_library_from_the_cache(tmp_pat
     # verilated.cpp and verilated_threads.cpp, built in another scratch folder the second
     # time, come from the cache; the model itself is compiled
     assert cache_hits(tmp_path / "cache" / "ccache") - hits == 2
+
+
+def test_a_model_built_on_every_core_is_reused_by_a_process_on_one(tmp_path, monkeypatch):
+    # the build compiles on every core it may use; how many is not part of the model's key
+    monkeypatch.setenv("RFC_CACHE_DIR", str(tmp_path / "cache"))
+    bench = counting_bench(tmp_path, 4)
+    assert "count=4" in run_testbench([bench], "bench", {}, {}, tmp_path / "one")
+    (model,) = (tmp_path / "cache" / "verilator").iterdir()
+    built = (model / "Vbench").stat().st_mtime_ns
+    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {0})
+    assert "count=4" in run_testbench([bench], "bench", {}, {}, tmp_path / "two")
+    assert [entry.name for entry in (tmp_path / "cache" / "verilator").iterdir()] == [model.name]
+    assert (model / "Vbench").stat().st_mtime_ns == built

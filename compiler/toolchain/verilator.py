@@ -207,8 +207,9 @@ def build_stream_engine(
 def _build_jobs() -> list[str]:
     """Verilator's options to compile a model's C++ files on every core this process may use.
 
-    Verilator's `--build` compiles one file at a time otherwise: a cold build of the quaternion
-    example's model took 59 s instead of 41 s on two cores. Not part of a model's cache key.
+    Verilator's `--build` compiles one file at a time otherwise: a first `rfc sim` of the
+    quaternion example, nothing cached, took 57-59 s instead of 37-41 s on two cores. Not part
+    of a model's cache key.
     """
     return ["--build-jobs", str(len(os.sched_getaffinity(0)))]
 

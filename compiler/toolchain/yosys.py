@@ -96,7 +96,10 @@ def _synthesized(files: Sequence[Path], top: str) -> Iterator[Path]:
 
 
 #: Changes whenever the way a module is mapped or timed changes, so old cache entries go unused.
-_FLOW = "synth_xilinx -family xc7 -noiopad -abc9 -flatten, no cells_xtra, sta, boundary logic, v4"
+_FLOW = (
+    "synth_xilinx -family xc7 -noiopad -abc9 -flatten, no cells_xtra, no brams map, sta, "
+    "boundary logic, v5"
+)
 #: The same for a module that instantiates others (`module_estimate`'s `submodules`).
 _SUBMODULE_FLOW = "submodules as black boxes, out of sta, their ports' cones in the boundary, v2"
 #: How many modules are mapped at once (the development machines have two cores).
@@ -106,6 +109,16 @@ _CELLS = "read_verilog -lib -specify +/xilinx/cells_sim.v"
 #: The rest of the 7-series primitives (clock managers, transceivers, I/O serializers, …) as
 #: black boxes: `synth_xilinx` reads them first thing, after `_CELLS`.
 _OTHER_CELLS = "read_verilog -lib +/xilinx/cells_xtra.v"
+#: `synth_xilinx`'s step `map_memory` for the 7-series, as Yosys writes it (0.23 to 2026) but
+#: for its last command, the mapping of block RAMs (`_Libraries`).
+_MEMORY_LIBMAP = (
+    "memory_libmap -logic-cost-rom 0.015625 -lib +/xilinx/lutrams_xc5v.txt "
+    "-lib +/xilinx/brams_xc4v.txt -D HAS_SIZE_36 -D HAS_CASCADE -D HAS_CONFLICT_BUG "
+    "-D HAS_MIXWIDTH_SDP"
+)
+_LUTRAM_MAP = "techmap -map +/xilinx/lutrams_xc5v_map.v"
+#: The cells `memory_libmap` leaves for the block-RAM mapping to turn into RAMB18E1/RAMB36E1.
+_BLOCK_RAMS = "t:$__XILINX_BLOCKRAM_*"
 #: Cells that hold state: a path starts at their clock and ends at their inputs.
 _REGISTERS = "t:FD* t:DSP48E1 t:RAMB* t:SRL* t:RAM*"
 #: Flip-flops, whose data and control pins end a path and whose output starts one.
@@ -248,19 +261,19 @@ def _map_module(module: _Module, entry: Path, anonymous: Path) -> None:
         work = Path(scratch)
         report = work / _STAT
         try:
-            _run_mapping(lambda cells: _estimate_script(module, work, cells), str(module.verilog))
+            _run_mapping(lambda libs: _estimate_script(module, work, libs), str(module.verilog))
         except _Abc9BlockRamError:
             # Yosys 0.23's abc9 aborts on every block RAM: count with the plain mapping, time
             # with the memories in distributed RAM (docs/performance.md, "Timing").
             _run_mapping(
-                lambda cells: (
-                    f"{_mapping(module, cells=cells, abc9=False)}; tee -q -o {report} stat -json"
+                lambda libs: (
+                    f"{_mapping(module, libraries=libs, abc9=False)}; tee -q -o {report} stat -json"
                 ),
                 str(module.verilog),
             )
             _run_mapping(
-                lambda cells: (
-                    f"{_mapping(module, '-nobram', cells=cells)}; "
+                lambda libs: (
+                    f"{_mapping(module, '-nobram', libraries=libs)}; "
                     f"{_timing_and_boundary(module, work)}"
                 ),
                 str(module.verilog),
@@ -289,28 +302,58 @@ def estimate_script(verilog: Path, top: str, work: Path, submodules: Sequence[Pa
     return _estimate_script(_Module(verilog, top, tuple(submodules)), work)
 
 
-def _estimate_script(module: _Module, work: Path, cells: str = _CELLS) -> str:
+@dataclass(frozen=True)
+class _Libraries:
+    """Which of `synth_xilinx`'s libraries a mapping reads; `_run_mapping` adds what it lacks.
+
+    Most generated modules need neither: `cells_xtra.v` holds primitives no generated logic
+    instantiates, and reading the block-RAM mapping (`brams_xc6v_map.v`) costs 1.2 to 1.7 s of
+    CPU a module, though few modules have a memory large enough for a block RAM.
+    """
+
+    other_cells: bool = False
+    block_ram: bool = False
+
+    def cells(self) -> str:
+        """The commands reading the cell library: with the other primitives, or not."""
+        return f"{_CELLS}; {_OTHER_CELLS}" if self.other_cells else _CELLS
+
+
+#: What a mapping reads first: the 7-series cells, no block-RAM mapping.
+_FEWEST_LIBRARIES = _Libraries()
+
+
+def _estimate_script(module: _Module, work: Path, libraries: _Libraries = _FEWEST_LIBRARIES) -> str:
     return (
-        f"{_mapping(module, cells=cells)}; tee -q -o {work / _STAT} stat -json; "
+        f"{_mapping(module, libraries=libraries)}; tee -q -o {work / _STAT} stat -json; "
         f"{_timing_and_boundary(module, work)}"
     )
 
 
-def _mapping(module: _Module, options: str = "", cells: str = _CELLS, abc9: bool = True) -> str:
+def _mapping(
+    module: _Module, options: str = "", libraries: _Libraries = _FEWEST_LIBRARIES, abc9: bool = True
+) -> str:
     """Read `module` and map it to the 7-series, flattened (with `-abc9` unless told otherwise)."""
     flow = " ".join(filter(None, ("-abc9" if abc9 else "", "-flatten", options)))
-    return f"{module.read()}; {_synth_xilinx(module.top, flow, cells)}"
+    return f"{module.read()}; {_synth_xilinx(module.top, flow, libraries)}"
 
 
-def _synth_xilinx(top: str, options: str, cells: str) -> str:
-    """`synth_xilinx -family xc7 -noiopad` with `options`, its first step reading `cells`.
+def _synth_xilinx(top: str, options: str, libraries: _Libraries) -> str:
+    """`synth_xilinx -family xc7 -noiopad` with `options`, reading only `libraries`.
 
-    That step (`begin`) reads the cell libraries and sets the top module; `_run_mapping` says
-    which libraries `cells` reads, and the script runs from its second step on.
+    rfc runs the script's first step (`begin`: read the cell libraries, set the top module)
+    itself. Without `libraries.block_ram` it runs `map_memory` itself too, but for the mapping
+    of block RAMs, and asserts that there is none to map (`_BlockRamMapMissingError`).
     """
-    synth = " ".join(filter(None, ("synth_xilinx -family xc7 -noiopad", options)))
-    synth = f"{synth} -top {top} -run prepare:"
-    return f"{cells}; hierarchy -check -top {top}; {synth}"
+    synth = " ".join(filter(None, ("synth_xilinx -family xc7 -noiopad", options, f"-top {top}")))
+    begin = f"{libraries.cells()}; hierarchy -check -top {top}"
+    if libraries.block_ram:
+        return f"{begin}; {synth} -run prepare:"
+    limits = "-no-auto-block -no-auto-huge" if "-nobram" in options.split() else "-no-auto-huge"
+    return (
+        f"{begin}; {synth} -run prepare:map_memory; {_MEMORY_LIBMAP} {limits}; {_LUTRAM_MAP}; "
+        f"select -assert-none {_BLOCK_RAMS}; {synth} -run map_ffram:"
+    )
 
 
 def _timing_and_boundary(module: _Module, work: Path) -> str:
@@ -416,7 +459,7 @@ def estimate_timing(files: Sequence[Path], top: str) -> TimingPath | None:
         log = verilog.parent / "sta.log"
         module = _Module(verilog, top)
         _run_mapping(
-            lambda cells: f"{_mapping(module, cells=cells)}; {_timing_commands(top, log)}", top
+            lambda libs: f"{_mapping(module, libraries=libs)}; {_timing_commands(top, log)}", top
         )
         return parse_sta(log.read_text())
 
@@ -459,19 +502,29 @@ def _publish(path: Path, text: str) -> None:
     partial.replace(path)
 
 
-def _run_mapping(script: Callable[[str], str], what: str) -> None:
-    """Run a mapping `script` given the commands that read the cell libraries it may use.
+def _run_mapping(script: Callable[[_Libraries], str], what: str) -> None:
+    """Run a mapping `script` with the fewest libraries, then with those it turns out to need.
 
     `synth_xilinx` reads 1.4 MB of other primitives' black boxes (`_OTHER_CELLS`) that no
     generated logic instantiates, and carries them through every pass: 2 to 4 s of CPU per
     module. The mapping is the same but for the order ABC meets the cells in (Yosys numbers
     fewer of them first), which moves a large module's LUT count by a fraction of a percent
-    at most. A design that instantiates one of those primitives is mapped again with them.
+    at most. A design that instantiates one of those primitives is mapped again with them; one
+    with a memory for a block RAM, again with the block-RAM mapping.
     """
-    try:
-        _run_yosys(script(_CELLS), what)
-    except _MissingModuleError:
-        _run_yosys(script(f"{_CELLS}; {_OTHER_CELLS}"), what)
+    libraries = _FEWEST_LIBRARIES
+    while True:
+        try:
+            _run_yosys(script(libraries), what)
+            return
+        except _MissingModuleError:
+            if libraries.other_cells:
+                raise
+            libraries = dataclasses.replace(libraries, other_cells=True)
+        except _BlockRamMapMissingError:
+            if libraries.block_ram:
+                raise
+            libraries = dataclasses.replace(libraries, block_ram=True)
 
 
 def _run_yosys(script: str, what: str) -> None:
@@ -487,11 +540,17 @@ def _run_yosys(script: str, what: str) -> None:
             raise _Abc9BlockRamError(message)
         if "is not part of the design" in result.stderr:
             raise _MissingModuleError(message)
+        if "Assertion failed" in result.stderr and _BLOCK_RAMS in result.stderr:
+            raise _BlockRamMapMissingError(message)
         raise RuntimeError(message)
 
 
 class _MissingModuleError(RuntimeError):
     """The design instantiates a module Yosys was not given (`hierarchy -check`)."""
+
+
+class _BlockRamMapMissingError(RuntimeError):
+    """`memory_libmap` chose a block RAM: the mapping must read `brams_xc6v_map.v` after all."""
 
 
 class _Abc9BlockRamError(RuntimeError):
@@ -513,7 +572,7 @@ def resources_of_verilog(verilog: Path | Sequence[Path], top: str, workdir: Path
     files = [verilog] if isinstance(verilog, Path) else list(verilog)
     read = f"read_verilog {' '.join(str(f) for f in files)}"
     _run_mapping(
-        lambda cells: f"{read}; {_synth_xilinx(top, '', cells)}; tee -q -o {report} stat -json",
+        lambda libs: f"{read}; {_synth_xilinx(top, '', libs)}; tee -q -o {report} stat -json",
         str(verilog),
     )
     return _resources(report)

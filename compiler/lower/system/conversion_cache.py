@@ -9,8 +9,9 @@ Files count by name and content, not by folder, so a copy of a project elsewhere
 temporary folder) converts the same. Within a build run under `conversions_cached`, each
 block's files are kept under ``$RFC_CACHE_DIR/conversion`` by the key and the block's entity
 name, and a later build with the same key copies them instead of converting: the same bytes.
-A file an accelerator reads while it elaborates (other than Python it imports) is not in the
-key.
+The latencies a build measures in MyHDL's simulator are kept the same way
+(`cached_measurement`). A file an accelerator reads while it elaborates (other than Python it
+imports) is not in the key.
 """
 
 from __future__ import annotations
@@ -28,6 +29,7 @@ from contextvars import ContextVar
 from functools import cache
 from importlib import metadata
 from pathlib import Path
+from typing import Any
 
 from rfc.ir.model import Design
 from rfc.toolchain.cache import cache_root
@@ -93,6 +95,26 @@ def converted(name: str, directory: Path, convert: Callable[[], Sequence[Path]])
     files = list(convert())
     _publish(entry, files)
     return files
+
+
+def cached_measurement(name: str, measure: Callable[[], Any]) -> Any:
+    """`measure()`'s value, kept as JSON beside the converted files of the build's key.
+
+    For figures a build measures by simulating the blocks it converts (the report's latencies:
+    seconds of MyHDL elaboration for the quaternion core): they depend on what the key covers.
+    The value always goes through JSON, so a cold build reports what a warm one reads back.
+    `name` must not be an entity's: one with a space is none.
+    """
+    with tempfile.TemporaryDirectory(prefix="rfc-measured-") as scratch:
+        folder = Path(scratch)
+
+        def write() -> list[Path]:
+            path = folder / "value.json"
+            path.write_text(json.dumps(measure()))
+            return [path]
+
+        (path,) = converted(name, folder, write)
+        return json.loads(path.read_text())
 
 
 def _publish(entry: Path, files: Sequence[Path]) -> None:

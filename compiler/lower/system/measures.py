@@ -16,6 +16,7 @@ from rfc.ir.model import AcceleratorKind, BlockKind, Design
 from rfc.lib.devices import bram36
 from rfc.lower.artifacts import ReportSection
 from rfc.lower.report import markdown_table
+from rfc.lower.system.conversion_cache import cached_measurement
 from rfc.lower.system.generate import SystemHardware
 from rfc.lower.system.latency import (
     gate_latency,
@@ -31,6 +32,28 @@ ACCELERATOR_TARGET = 120
 
 def latency_section(design: Design, system: SystemHardware) -> ReportSection:
     """Cycles of each converter and MyHDL accelerator on one message, without backpressure."""
+    rows = cached_measurement("report latencies", lambda: _latency_rows(design, system))
+    lines = [
+        "Cycles for one message of default values with every ready high, measured in MyHDL's "
+        "simulator: subscriber from the first beat to its fields, accelerator from its inputs to "
+        "its outputs, publisher from its fields to the last beat (— where rfc cannot simulate the"
+        " block: VHDL and HLS accelerators). Targets: docs/architecture.md (frame size is the "
+        "largest frame for variable-size messages). In front of each subscriber, what keeps "
+        "malformed frames from its consumers (docs/converters.md, Malformed input): a drop gate "
+        "behind a subscriber of fixed-size fields, which adds no cycle, or a frame guard before "
+        "one that streams strings or sequences, which holds each frame until a copy of the "
+        "subscriber has parsed it: from the frame's first beat in to its first beat out to the "
+        "subscriber, the subscriber's own cycles on that frame (its beats, one a cycle, and a few"
+        " cycles per string or sequence element) plus a constant; the subscriber's cycles then "
+        "follow.",
+        "",
+        *markdown_table(["block", "name", "cycles", "target"], rows, (False, False, True, True)),
+    ]
+    return ReportSection("Latencies", tuple(lines))
+
+
+def _latency_rows(design: Design, system: SystemHardware) -> list[list[object]]:
+    """The latency table's rows: each block measured in MyHDL's simulator."""
     infrastructure = design.infrastructure
     assert infrastructure is not None
     rows: list[list[object]] = []
@@ -58,23 +81,7 @@ def latency_section(design: Design, system: SystemHardware) -> ReportSection:
         beats = math.ceil(converter.max_frame_bytes / (converter.bus_width // 8))
         measured = publisher_latency(converter, system.limits)
         rows.append(["publisher", f"`{converter.block}`", measured, f"≤ {beats + 3}"])
-    lines = [
-        "Cycles for one message of default values with every ready high, measured in MyHDL's "
-        "simulator: subscriber from the first beat to its fields, accelerator from its inputs to "
-        "its outputs, publisher from its fields to the last beat (— where rfc cannot simulate the"
-        " block: VHDL and HLS accelerators). Targets: docs/architecture.md (frame size is the "
-        "largest frame for variable-size messages). In front of each subscriber, what keeps "
-        "malformed frames from its consumers (docs/converters.md, Malformed input): a drop gate "
-        "behind a subscriber of fixed-size fields, which adds no cycle, or a frame guard before "
-        "one that streams strings or sequences, which holds each frame until a copy of the "
-        "subscriber has parsed it: from the frame's first beat in to its first beat out to the "
-        "subscriber, the subscriber's own cycles on that frame (its beats, one a cycle, and a few"
-        " cycles per string or sequence element) plus a constant; the subscriber's cycles then "
-        "follow.",
-        "",
-        *markdown_table(["block", "name", "cycles", "target"], rows, (False, False, True, True)),
-    ]
-    return ReportSection("Latencies", tuple(lines))
+    return rows
 
 
 def buffers_section(system: SystemHardware) -> ReportSection:

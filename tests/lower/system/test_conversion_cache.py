@@ -61,20 +61,25 @@ def files_below(folder: Path) -> dict[str, bytes]:
     return {str(p.relative_to(folder)): p.read_bytes() for p in folder.rglob("*") if p.is_file()}
 
 
-def test_a_second_build_converts_nothing_and_writes_the_first_ones_bytes(tmp_path, monkeypatch):
+def test_a_second_build_converts_and_simulates_nothing_and_writes_the_first_ones_bytes(
+    tmp_path, monkeypatch
+):
     monkeypatch.setenv("RFC_CACHE_DIR", str(tmp_path / "cache"))
     spec = project(tmp_path, "offsets_of_the_warm_build")
     cold = CliRunner().invoke(app, ["build", str(spec), "-o", str(tmp_path / "cold")])
     assert cold.exit_code == 0, cold.output
 
     def refuse(*args, **kwargs):
-        raise AssertionError("a warm build converted a MyHDL block")
+        raise AssertionError("a warm build converted or simulated a MyHDL block")
 
+    # the report's latencies are measured in MyHDL's simulator: kept with the converted files
     monkeypatch.setattr(myhdl._block._Block, "convert", refuse)
+    monkeypatch.setattr(myhdl._block._Block, "run_sim", refuse)
     warm = CliRunner().invoke(app, ["build", str(spec), "-o", str(tmp_path / "warm")])
     assert warm.exit_code == 0, warm.output
     assert files_below(tmp_path / "warm") == files_below(tmp_path / "cold")
     assert "hw/passpoint.vhd" in files_below(tmp_path / "warm")
+    assert "| accelerator | `acc` | 1 |" in (tmp_path / "warm/report.md").read_text()
 
 
 def test_a_changed_source_or_imported_module_is_converted_afresh(tmp_path):

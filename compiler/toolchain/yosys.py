@@ -270,6 +270,7 @@ def _map_module(module: _Module, entry: Path, anonymous: Path) -> None:
                     f"{_mapping(module, libraries=libs, abc9=False)}; tee -q -o {report} stat -json"
                 ),
                 str(module.verilog),
+                start=_Libraries(block_ram=True),
             )
             _run_mapping(
                 lambda libs: (
@@ -502,8 +503,10 @@ def _publish(path: Path, text: str) -> None:
     partial.replace(path)
 
 
-def _run_mapping(script: Callable[[_Libraries], str], what: str) -> None:
-    """Run a mapping `script` with the fewest libraries, then with those it turns out to need.
+def _run_mapping(
+    script: Callable[[_Libraries], str], what: str, start: _Libraries = _FEWEST_LIBRARIES
+) -> None:
+    """Run a mapping `script` with the `start` libraries, then with those it turns out to need.
 
     `synth_xilinx` reads 1.4 MB of other primitives' black boxes (`_OTHER_CELLS`) that no
     generated logic instantiates, and carries them through every pass: 2 to 4 s of CPU per
@@ -512,7 +515,7 @@ def _run_mapping(script: Callable[[_Libraries], str], what: str) -> None:
     at most. A design that instantiates one of those primitives is mapped again with them; one
     with a memory for a block RAM, again with the block-RAM mapping.
     """
-    libraries = _FEWEST_LIBRARIES
+    libraries = start
     while True:
         try:
             _run_yosys(script(libraries), what)

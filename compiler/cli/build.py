@@ -74,11 +74,6 @@ def build(
     """Build every artifact of a spec into DIR, with report.md; nothing is written on error."""
     from rfc.driver import compile_spec
     from rfc.ir.text import format_ir
-    from rfc.lower import lower
-    from rfc.lower.artifacts import BuildOptions
-    from rfc.lower.system.conversion_cache import conversion_key, conversions_cached
-    from rfc.lower.system.estimate import TimingWarning
-    from rfc.lower.writer import write_artifacts
     from rfc.passes.check_timing import BlockTimingWarning
     from rfc.passes.pipeline import BUILD_PIPELINE, SOFTWARE_BUILD_PIPELINE, pass_names
 
@@ -95,10 +90,18 @@ def build(
             sys.stdout.write(f"# IR after {name}\n{format_ir(design)}")
 
     pipeline = SOFTWARE_BUILD_PIPELINE if no_hardware else BUILD_PIPELINE
-    options = BuildOptions(emit_ir=emit_ir, estimate=estimate, hardware=not no_hardware)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", BlockTimingWarning)
         design = compile_spec(str(spec), after=dump, pipeline=pipeline)
+    # the lowering (MyHDL and every hardware block: about a second) only for a valid spec, so
+    # that a spec's error comes as fast as from `rfc check`
+    from rfc.lower import lower
+    from rfc.lower.artifacts import BuildOptions
+    from rfc.lower.system.conversion_cache import conversion_key, conversions_cached
+    from rfc.lower.system.estimate import TimingWarning
+    from rfc.lower.writer import write_artifacts
+
+    options = BuildOptions(emit_ir=emit_ir, estimate=estimate, hardware=not no_hardware)
     with (
         _working("estimating the logic with Yosys" if estimate else None),
         conversions_cached(conversion_key(spec, design, options)),

@@ -118,7 +118,7 @@ def run_handshake(
         backpressure: Probability of `out_ready` being low on a cycle.
         seed: Seed of the bench's random idle and backpressure.
         timeout_cycles: Cycles without progress after which the bench fails (a hang).
-        compiled: Run the logic compiled by GHDL's llvm back-end instead of mcode's: about 3
+        compiled: In GHDL, run the logic compiled by its llvm back-end instead of mcode's: about 3
             times the cycles per second of a large block, for a compile of seconds (kept by
             content, so every run of the same logic shares it). For runs of a minute or more.
         simulator: ``ghdl`` runs the VHDL of `sources`, ``verilator`` their Verilog (a model

@@ -4,11 +4,11 @@ Both have the same ports and the bits of `rfc.lib.cordic.model.vectoring`. The i
 takes one input at a time: a micro-rotation registers the shifted operands on one cycle and adds
 them on the next, so that no path runs through a barrel shifter and a wide adder at once
 (`CordicConfig.iterative_latency` cycles from the input handshake to `out_valid`, initiation
-interval `CordicConfig.iterative_interval`; about four adders, two barrel shifters and three
-registers of area). The pipelined one takes an input every cycle (one stage of three adders per
-iteration, the stages of `rfc.lib.cordic.stage`; latency `CordicConfig.pipelined_latency`);
-`cordic_pipeline` is its datapath alone, for larger pipelines. Outputs stay put while
-`out_valid` is high and `out_ready` low.
+interval `CordicConfig.iterative_interval`; an adder each for x, y and z, two barrel shifters
+and three registers of area). The pipelined one takes an input every cycle (one stage of three
+adders per iteration, the stages of `rfc.lib.cordic.stage`; latency
+`CordicConfig.pipelined_latency`); `cordic_pipeline` is its datapath alone, for larger
+pipelines. Outputs stay put while `out_valid` is high and `out_ready` low.
 
 Wide constants reach VHDL only as ROM contents: MyHDL writes integers in expressions as VHDL
 integers, which stop at 32 bits.
@@ -20,7 +20,7 @@ from myhdl import Signal, always_comb, always_seq, block, intbv
 
 from rfc.lib.arith.pipeline import signed_signal, stall_control
 from rfc.lib.cordic.config import CordicConfig
-from rfc.lib.cordic.stage import micro_rotation
+from rfc.lib.cordic.stage import add_or_subtract, micro_rotation
 from rfc.lib.types import Instances, SignalLike
 
 
@@ -62,9 +62,9 @@ def cordic_vectoring(
     )
 
 
-# Its micro-rotation is spelled out rather than `stage.rotation` or `stage.looped_rotation`:
-# the shifted operands and the turn are registered a cycle before the add, and a level
-# vector's angle is held.
+# Its micro-rotation is spelled out around `stage.add_or_subtract` rather than `stage.rotation`
+# or `stage.looped_rotation`: the shifted operands and the turn are registered a cycle before
+# the add, and a level vector's angle is held.
 @block
 def cordic_iterative(clk: SignalLike, rst: SignalLike, in_valid: SignalLike,
                      in_ready: SignalLike, x: SignalLike, y: SignalLike, out_valid: SignalLike,
@@ -73,8 +73,11 @@ def cordic_iterative(clk: SignalLike, rst: SignalLike, in_valid: SignalLike,
     """A micro-rotation every two cycles through variable shifts; ports as `cordic_vectoring`.
 
     On the first cycle of a step the shifted operands ``x >> i``, ``y >> i`` and the turn
-    ``atan(2**-i)`` are registered; on the second they are added. The sign of y, which picks
-    the direction, is read from its register on the second cycle: y changes only then.
+    ``±atan(2**-i)`` are registered, the one subtracted complemented and the turn's sign
+    picked, by the sign of y; on the second each of x, y and z is one adder (the carry in of a
+    subtraction as a low bit below both operands): one carry chain a sum, not a sum and a
+    difference and a multiplexer. y changes only on the second cycle, so its sign is the
+    same on both.
     """
     iterations = config.iterations
     internal = config.internal_width
@@ -82,6 +85,7 @@ def cordic_iterative(clk: SignalLike, rst: SignalLike, in_valid: SignalLike,
     y_top = internal - 1
     # The step counter rests at `iterations` while idle; that address reads 0.
     rom = (*config.atan_table, 0)
+    negated_rom = tuple(-turn for turn in rom)
     xs = signed_signal(internal)
     ys = signed_signal(internal)
     zs = signed_signal(config.angle_width)
@@ -95,26 +99,32 @@ def cordic_iterative(clk: SignalLike, rst: SignalLike, in_valid: SignalLike,
     start_angle = signed_signal(config.angle_width)
     y_zero = Signal(bool(0))
     prerotate = cordic_prerotation(x, y, x_turned, y_turned, start_angle, y_zero, config)
+    down = Signal(bool(0))
+    x_sum, y_sum = signed_signal(internal), signed_signal(internal)
+    add = add_or_subtract(down, xs, ys, y_shifted, x_shifted, x_sum, y_sum)
+
+    @always_comb
+    def direction() -> None:
+        down.next = ys[y_top] == 0
 
     @always_seq(clk.posedge, reset=rst)
     def iterate() -> None:
         if step != iterations:
             if not adding:
-                x_shifted.next = xs >> step
-                y_shifted.next = ys >> step
-                turn.next = rom[step]
+                if down:
+                    x_shifted.next = ~(xs >> step)
+                    y_shifted.next = ys >> step
+                    turn.next = rom[step]
+                else:
+                    x_shifted.next = xs >> step
+                    y_shifted.next = ~(ys >> step)
+                    turn.next = negated_rom[step]
                 adding.next = True
             else:
-                if ys[y_top] == 0:
-                    xs.next = xs + y_shifted
-                    ys.next = ys - x_shifted
-                    if not level:
-                        zs.next = zs + turn
-                else:
-                    xs.next = xs - y_shifted
-                    ys.next = ys + x_shifted
-                    if not level:
-                        zs.next = zs - turn
+                xs.next = x_sum
+                ys.next = y_sum
+                if not level:
+                    zs.next = zs + turn
                 if step == iterations - 1:
                     full.next = True
                 step.next = step + 1
@@ -136,7 +146,7 @@ def cordic_iterative(clk: SignalLike, rst: SignalLike, in_valid: SignalLike,
         magnitude.next = xs >> guard
         angle.next = zs
 
-    return prerotate, iterate, outputs
+    return prerotate, add, direction, iterate, outputs
 
 
 @block

@@ -28,9 +28,9 @@ settings.load_profile("rfc")
 # mcode's analysis is cheaper than llvm's compile; tests/cli/test_sim_ghdl_cache.py and
 # tests/toolchain/test_ghdl_*.py run llvm itself and check it gives mcode's bytes.
 os.environ.setdefault("GHDL_BACKEND", "mcode")
-# Likewise `rfc sim`'s Verilator models: the suite builds dozens and replays a few messages
-# through each, where g++'s -O0 builds Franka's in 29 s against 67 s at the default -O2;
-# tests/cli/test_sim_verilator_optimization.py builds at the default and compares the bytes.
+# Likewise the Verilator models: the suite builds dozens and replays a few messages through
+# each, where g++'s -O0 builds Franka's in 29 s against 67 s at `rfc sim`'s default -O2. The
+# long replays unset it; tests/cli/test_sim_verilator_optimization.py compares both levels.
 os.environ.setdefault("RFC_VERILATOR_OPT", "0")
 
 # Tests that keep their compiled models apart (their own RFC_CACHE_DIR) still share the objects

@@ -28,6 +28,8 @@ from rfc.toolchain.ghdl import STANDARD, Backend
 from rfc.toolchain.ghdl import _vhdl as vhdl_files  # the files GHDL analyzes, as it picks them
 from rfc.toolchain.verilator import (
     OPTIONS,
+    VerilatorError,
+    chosen_optimization,
     model_cache,
     verilator_environment,
     verilator_version,
@@ -263,8 +265,14 @@ def _verilator_model(verilog: Sequence[Path], toplevel: str) -> Path:
     The model links cocotb's libraries from the environment that built it: the key holds their
     folder, so a model is not reused from a virtual environment since deleted or replaced.
     """
+    try:
+        chosen = chosen_optimization()
+    except VerilatorError as exc:
+        raise CosimError(str(exc)) from None
+    # Verilator's own g++ flags unless RFC_VERILATOR_OPT names a level
+    options = [*OPTIONS, "-CFLAGS", chosen] if chosen else list(OPTIONS)
     digest = hashlib.sha256()
-    for part in (verilator_version(), toplevel, " ".join(OPTIONS), str(libs_dir.resolve())):
+    for part in (verilator_version(), toplevel, " ".join(options), str(libs_dir.resolve())):
         digest.update(part.encode() + b"\n")
     for path in verilog:
         for line in canonical_lines(path.read_text()):
@@ -279,7 +287,7 @@ def _verilator_model(verilog: Sequence[Path], toplevel: str) -> Path:
                 sources=list(verilog),
                 hdl_toplevel=toplevel,
                 build_dir=partial,
-                build_args=list(OPTIONS),
+                build_args=options,
                 log_file=partial / "build.log",
             )
         except (SystemExit, subprocess.CalledProcessError) as exc:

@@ -132,9 +132,12 @@ def run_testbench(
         What the run printed.
 
     Raises:
-        VerilatorError: The testbench does not build or the run fails.
+        VerilatorError: The testbench does not build or the run fails, or
+            ``RFC_VERILATOR_OPT`` names no level.
     """
     options = [*OPTIONS, "--binary", "--timing", "-CFLAGS", "-std=c++20", "--top-module", top]
+    if chosen := chosen_optimization():  # else Verilator's own g++ flags
+        options += ["-CFLAGS", chosen]
     options += [f"-G{name}={value}" for name, value in parameters.items()]
     digest = hashlib.sha256()
     for part in (verilator_version(), *options):
@@ -168,8 +171,8 @@ def build_stream_engine(
 ) -> Path:
     """Compile the stream engine around the Verilog `top` (cached by content), return it.
 
-    g++ compiles it at `engine_optimization`'s level (``-O2`` unless ``RFC_VERILATOR_OPT``
-    names another).
+    g++ compiles it at ``-O2``, or at the level ``RFC_VERILATOR_OPT`` names
+    (`chosen_optimization`).
 
     Args:
         testbench: The engine's C++ source (`rfc.sim.stream_engine`).
@@ -184,7 +187,7 @@ def build_stream_engine(
     ports = "".join(f" X({name})" for name in status_ports)
     header = f"#define RFC_LANES {lanes}\n#define RFC_STATUS_PORTS(X){ports}\n"
     options = [*OPTIONS, "--cc", "--exe", "--build", "-O3", "--prefix", "Vdut"]
-    options += ["--top-module", top, "-CFLAGS", engine_optimization()]
+    options += ["--top-module", top, "-CFLAGS", chosen_optimization() or ENGINE_OPTIMIZATION]
     digest = hashlib.sha256()
     for part in (verilator_version(), *options, header, testbench.read_text()):
         digest.update(part.encode() + b"\n")
@@ -207,29 +210,32 @@ def build_stream_engine(
         return publish_build(partial, model) / "Vdut"
 
 
-#: The environment variable naming the C++ compiler's optimization level of `rfc sim`'s models.
+#: The environment variable naming g++'s optimization level of the Verilator models rfc builds.
 OPTIMIZATION_VARIABLE = "RFC_VERILATOR_OPT"
-#: Its levels (g++'s ``-O``), and the one taken when it is unset.
+#: Its levels (g++'s ``-O``).
 OPTIMIZATION_LEVELS = ("0", "1", "2", "3", "s", "g")
-DEFAULT_OPTIMIZATION = "2"
+#: g++'s option for `rfc sim`'s stream engine when the variable is unset.
+ENGINE_OPTIMIZATION = "-O2"
 
 
-def engine_optimization() -> str:
-    """g++'s ``-O`` option for a stream engine: ``-O2``, or the level ``RFC_VERILATOR_OPT`` names.
+def chosen_optimization() -> str | None:
+    """g++'s ``-O`` option ``RFC_VERILATOR_OPT`` names for every model; None when it is unset.
 
-    The level trades the model's build against its speed: Franka's system (ccache off, two
+    The level trades a model's build against its speed: Franka's system (ccache off, two
     cores) builds in 29 s at ``0``, 43 s at ``1``, 67 s at ``2``. Short replays of a large
-    logic (the test suite's) gain from ``0``; long bags want the default. Part of the model's
+    logic (the test suite's) gain from ``0``; long bags want the default. Part of each model's
     cache key, so models of two levels are kept apart.
 
     Raises:
         VerilatorError: The variable names no level.
     """
-    level = os.environ.get(OPTIMIZATION_VARIABLE) or DEFAULT_OPTIMIZATION
+    level = os.environ.get(OPTIMIZATION_VARIABLE)
+    if not level:
+        return None
     if level not in OPTIMIZATION_LEVELS:
         raise VerilatorError(
             f"{OPTIMIZATION_VARIABLE}={level} is not an optimization level of the C++ compiler: "
-            f"give one of {', '.join(OPTIMIZATION_LEVELS)} (unset: {DEFAULT_OPTIMIZATION})"
+            f"give one of {', '.join(OPTIMIZATION_LEVELS)}, or unset it"
         )
     return f"-O{level}"
 

@@ -1,11 +1,13 @@
-"""`RFC_VERILATOR_OPT` sets g++'s optimization of `rfc sim`'s Verilator models, not their bytes.
+"""`RFC_VERILATOR_OPT` sets g++'s optimization of rfc's Verilator models, not what they compute.
 
-The suite builds its models at ``0`` (tests/conftest.py); here the default level builds one
-too, and both must give the same output bag, each kept in the cache as a model of its own.
+The suite builds its models at ``0`` (tests/conftest.py); here the defaults build them too
+(`rfc sim`'s at ``-O2``, `rfc msg loopback`'s at Verilator's own flags), and both levels must
+give the same output bag and report, each model kept in the cache apart.
 """
 
 from __future__ import annotations
 
+import json
 import subprocess
 from pathlib import Path
 
@@ -62,6 +64,34 @@ def test_a_level_g_plus_plus_does_not_have_is_refused_and_nothing_is_written(tmp
     result = verilator_sim(tmp_path, "fast", "out.mcap")
     assert result.returncode == 1
     assert "RFC_VERILATOR_OPT=fast is not an optimization level" in result.stderr
-    assert "give one of 0, 1, 2, 3, s, g" in result.stderr
+    assert "give one of 0, 1, 2, 3, s, g, or unset it" in result.stderr
     assert "Traceback" not in result.stderr
     assert not (tmp_path / "out.mcap").exists()
+
+
+def verilator_loopback(folder: Path, level: str) -> subprocess.CompletedProcess[str]:
+    """`rfc msg loopback` of five Points on Verilator at optimization `level`."""
+    bag = folder / "in.mcap"
+    if not bag.exists():
+        point_bag(bag)
+    args = ("msg", "loopback", POINT, "--bag", bag, "--simulator", "verilator", "--json")
+    env = {"RFC_CACHE_DIR": str(folder / "cache"), "RFC_VERILATOR_OPT": level}
+    return run_rfc(*args, cwd=folder, env=env)
+
+
+def test_the_loopback_reports_the_same_bytes_and_cycles_at_both_levels(tmp_path):
+    default = verilator_loopback(tmp_path, "")
+    assert default.returncode == 0, default.stderr
+    quick = verilator_loopback(tmp_path, "0")
+    assert quick.returncode == 0, quick.stderr
+    report = json.loads(default.stdout)
+    assert json.loads(quick.stdout) == report
+    assert report["equal"] is True
+    assert len(list((tmp_path / "cache/verilator").glob("tb-*"))) == 2
+
+
+def test_the_loopback_refuses_a_level_too(tmp_path):
+    result = verilator_loopback(tmp_path, "9")
+    assert result.returncode == 1
+    assert "RFC_VERILATOR_OPT=9 is not an optimization level" in result.stderr
+    assert "Traceback" not in result.stderr

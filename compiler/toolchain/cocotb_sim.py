@@ -29,8 +29,8 @@ from rfc.toolchain.ghdl import _vhdl as vhdl_files  # the files GHDL analyzes, a
 from rfc.toolchain.verilator import (
     OPTIONS,
     VerilatorError,
-    chosen_optimization,
     model_cache,
+    optimization_options,
     verilator_environment,
     verilator_version,
 )
@@ -266,11 +266,9 @@ def _verilator_model(verilog: Sequence[Path], toplevel: str) -> Path:
     folder, so a model is not reused from a virtual environment since deleted or replaced.
     """
     try:
-        chosen = chosen_optimization()
+        options = [*OPTIONS, *optimization_options()]
     except VerilatorError as exc:
         raise CosimError(str(exc)) from None
-    # Verilator's own g++ flags unless RFC_VERILATOR_OPT names a level
-    options = [*OPTIONS, "-CFLAGS", chosen] if chosen else list(OPTIONS)
     digest = hashlib.sha256()
     for part in (verilator_version(), toplevel, " ".join(options), str(libs_dir.resolve())):
         digest.update(part.encode() + b"\n")

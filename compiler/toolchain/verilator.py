@@ -136,8 +136,7 @@ def run_testbench(
             ``RFC_VERILATOR_OPT`` names no level.
     """
     options = [*OPTIONS, "--binary", "--timing", "-CFLAGS", "-std=c++20", "--top-module", top]
-    if chosen := chosen_optimization():  # else Verilator's own g++ flags
-        options += ["-CFLAGS", chosen]
+    options += optimization_options()
     options += [f"-G{name}={value}" for name, value in parameters.items()]
     digest = hashlib.sha256()
     for part in (verilator_version(), *options):
@@ -172,7 +171,7 @@ def build_stream_engine(
     """Compile the stream engine around the Verilog `top` (cached by content), return it.
 
     g++ compiles it at ``-O2``, or at the level ``RFC_VERILATOR_OPT`` names
-    (`chosen_optimization`).
+    (`optimization_options`).
 
     Args:
         testbench: The engine's C++ source (`rfc.sim.stream_engine`).
@@ -187,7 +186,7 @@ def build_stream_engine(
     ports = "".join(f" X({name})" for name in status_ports)
     header = f"#define RFC_LANES {lanes}\n#define RFC_STATUS_PORTS(X){ports}\n"
     options = [*OPTIONS, "--cc", "--exe", "--build", "-O3", "--prefix", "Vdut"]
-    options += ["--top-module", top, "-CFLAGS", chosen_optimization() or ENGINE_OPTIMIZATION]
+    options += ["--top-module", top, *optimization_options(ENGINE_OPTIMIZATION)]
     digest = hashlib.sha256()
     for part in (verilator_version(), *options, header, testbench.read_text()):
         digest.update(part.encode() + b"\n")
@@ -218,8 +217,10 @@ OPTIMIZATION_LEVELS = ("0", "1", "2", "3", "s", "g")
 ENGINE_OPTIMIZATION = "-O2"
 
 
-def chosen_optimization() -> str | None:
-    """g++'s ``-O`` option ``RFC_VERILATOR_OPT`` names for every model; None when it is unset.
+def optimization_options(default: str | None = None) -> list[str]:
+    """Verilator's options for g++'s ``-O``: ``RFC_VERILATOR_OPT``'s level, else `default`.
+
+    With neither, none: Verilator's own flags.
 
     The level trades a model's build against its speed: Franka's system (ccache off, two
     cores) builds in 29 s at ``0``, 43 s at ``1``, 67 s at ``2``. Short replays of a large
@@ -231,13 +232,13 @@ def chosen_optimization() -> str | None:
     """
     level = os.environ.get(OPTIMIZATION_VARIABLE)
     if not level:
-        return None
+        return ["-CFLAGS", default] if default else []
     if level not in OPTIMIZATION_LEVELS:
         raise VerilatorError(
             f"{OPTIMIZATION_VARIABLE}={level} is not an optimization level of the C++ compiler: "
             f"give one of {', '.join(OPTIMIZATION_LEVELS)}, or unset it"
         )
-    return f"-O{level}"
+    return ["-CFLAGS", f"-O{level}"]
 
 
 def _build_jobs() -> list[str]:

@@ -261,10 +261,15 @@ def _map_module(module: _Module, entry: Path, anonymous: Path) -> None:
         work = Path(scratch)
         report = work / _STAT
         try:
-            _run_mapping(lambda libs: _estimate_script(module, work, libs), str(module.verilog))
-        except _Abc9BlockRamError:
-            # Yosys 0.23's abc9 aborts on every block RAM: count with the plain mapping, time
-            # with the memories in distributed RAM (docs/performance.md, "Timing").
+            _run_mapping(
+                lambda libs: _estimate_script(module, work, libs),
+                str(module.verilog),
+                block_ram=False,
+            )
+        except _BlockRamMapMissingError:
+            # Yosys 0.23's abc9 aborts on every block RAM (a mapping with it would fail after
+            # minutes): count with the plain mapping, time with the memories in distributed
+            # RAM (docs/performance.md, "Timing").
             _run_mapping(
                 lambda libs: (
                     f"{_mapping(module, libraries=libs, abc9=False)}; tee -q -o {report} stat -json"
@@ -504,7 +509,10 @@ def _publish(path: Path, text: str) -> None:
 
 
 def _run_mapping(
-    script: Callable[[_Libraries], str], what: str, start: _Libraries = _FEWEST_LIBRARIES
+    script: Callable[[_Libraries], str],
+    what: str,
+    start: _Libraries = _FEWEST_LIBRARIES,
+    block_ram: bool = True,
 ) -> None:
     """Run a mapping `script` with the `start` libraries, then with those it turns out to need.
 
@@ -513,7 +521,8 @@ def _run_mapping(
     module. The mapping is the same but for the order ABC meets the cells in (Yosys numbers
     fewer of them first), which moves a large module's LUT count by a fraction of a percent
     at most. A design that instantiates one of those primitives is mapped again with them; one
-    with a memory for a block RAM, again with the block-RAM mapping.
+    with a memory for a block RAM, again with the block-RAM mapping (unless not `block_ram`:
+    then `_BlockRamMapMissingError` says it has one).
     """
     libraries = start
     while True:
@@ -525,7 +534,7 @@ def _run_mapping(
                 raise
             libraries = dataclasses.replace(libraries, other_cells=True)
         except _BlockRamMapMissingError:
-            if libraries.block_ram:
+            if libraries.block_ram or not block_ram:
                 raise
             libraries = dataclasses.replace(libraries, block_ram=True)
 
@@ -539,8 +548,6 @@ def _run_yosys(script: str, what: str) -> None:
     )
     if result.returncode != 0:
         message = f"yosys failed on {what}:\n{result.stderr or result.stdout}"
-        if "abc9" in script and "std::out_of_range" in result.stderr:
-            raise _Abc9BlockRamError(message)
         if "is not part of the design" in result.stderr:
             raise _MissingModuleError(message)
         if "Assertion failed" in result.stderr and _BLOCK_RAMS in result.stderr:
@@ -554,10 +561,6 @@ class _MissingModuleError(RuntimeError):
 
 class _BlockRamMapMissingError(RuntimeError):
     """`memory_libmap` chose a block RAM: the mapping must read `brams_xc6v_map.v` after all."""
-
-
-class _Abc9BlockRamError(RuntimeError):
-    """Yosys 0.23's `abc9_ops` throws `std::out_of_range` on a design with a block RAM."""
 
 
 @cache

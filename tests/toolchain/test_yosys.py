@@ -134,7 +134,18 @@ def _estimated(tmp_path, monkeypatch, top: str, verilog: str) -> yosys.ModuleEst
 
 def test_a_module_with_a_block_ram_is_counted_in_block_ram_and_timed(tmp_path, monkeypatch):
     # Yosys 0.23's abc9 aborts on a block RAM: counted without it, timed in distributed RAM
+    scripts = []
+    run_yosys = yosys._run_yosys
+
+    def recorded(script, what):
+        scripts.append(script)
+        run_yosys(script, what)
+
+    monkeypatch.setattr(yosys, "_run_yosys", recorded)
     mapped = _estimated(tmp_path, monkeypatch, "ram", RAM)
+    # the first mapping stops where it finds the block RAM; abc9 never meets one
+    assert len(scripts) == 3
+    assert not any("-abc9" in s and "brams_xc6v_map" in s for s in scripts)
     assert mapped.resources.bram >= 1
     assert mapped.resources.lutram == 0
     assert mapped.timing is not None

@@ -92,14 +92,18 @@ def record_sources(
             for run in pieces(slot, t.base[pc], width):
                 for i in range(run.count):
                     chunk_bits[run.lane + i][run.rc] = _bits(value, run.first + i)
+    # In a record, rc is below the record chunks: its low bits select, and the high ones only
+    # count the chunks of payloads, whose cycles send no record byte.
+    index_bits = max(1, (t.record_chunks - 1).bit_length())
+    index = rc(index_bits, 0) if index_bits < len(rc) else rc
     for lane in range(width):
         if any(bits is not zero for bits in chunk_bits[lane]):  # else never given: undriven
             sent = chunk_bits[lane]
-            # Every value rc's bits can hold has an input (an index out of a VHDL vector's
+            # Every value the index can hold has an input (an index out of a VHDL vector's
             # range stops a simulation); beyond the records, where nothing is sent, the last
             # chunk's bits, as a ROM's `others` gives, keep the multiplexer small.
-            planes = _planes(sent + [sent[-1]] * ((1 << len(rc)) - t.record_chunks))
-            blocks.append(lane_bits(planes, rc, lanes[lane]))
+            planes = _planes(sent + [sent[-1]] * ((1 << index_bits) - t.record_chunks))
+            blocks.append(lane_bits(planes, index, lanes[lane]))
     return blocks
 
 

@@ -31,18 +31,24 @@ endmodule
 """
 
 
+def recorded_scripts(monkeypatch) -> list[str]:
+    """The Yosys scripts the module cache runs from now on, in order (each still run)."""
+    scripts: list[str] = []
+    run_yosys = yosys._run_yosys
+
+    def recorded(script, what):
+        scripts.append(script)
+        run_yosys(script, what)
+
+    monkeypatch.setattr(yosys, "_run_yosys", recorded)
+    return scripts
+
+
 def test_two_builds_needing_one_module_at_once_map_it_once(tmp_path, monkeypatch):
     monkeypatch.setenv("RFC_CACHE_DIR", str(tmp_path / "cache"))
     source = tmp_path / "counter.v"
     source.write_text(COUNTER)
-    scripts = []
-    run_yosys = yosys._run_yosys
-
-    def counted(script, what):
-        scripts.append(script)
-        run_yosys(script, what)
-
-    monkeypatch.setattr(yosys, "_run_yosys", counted)
+    scripts = recorded_scripts(monkeypatch)
     with ThreadPoolExecutor(max_workers=2) as pool:
         first, second = pool.map(lambda _: yosys.module_estimate(source, "counter"), range(2))
     assert len(scripts) == 1
@@ -134,14 +140,7 @@ def _estimated(tmp_path, monkeypatch, top: str, verilog: str) -> yosys.ModuleEst
 
 def test_a_module_with_a_block_ram_is_counted_in_block_ram_and_timed(tmp_path, monkeypatch):
     # Yosys 0.23's abc9 aborts on a block RAM: counted without it, timed in distributed RAM
-    scripts = []
-    run_yosys = yosys._run_yosys
-
-    def recorded(script, what):
-        scripts.append(script)
-        run_yosys(script, what)
-
-    monkeypatch.setattr(yosys, "_run_yosys", recorded)
+    scripts = recorded_scripts(monkeypatch)
     mapped = _estimated(tmp_path, monkeypatch, "ram", RAM)
     # the first mapping stops where it finds the block RAM; abc9 never meets one
     assert len(scripts) == 3

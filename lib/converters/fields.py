@@ -69,7 +69,7 @@ def shift_register(
     """Shift whole chunks `first` to `last` into `target` as they pass, the first lowest.
 
     GHDL runs a clocked process at every clock edge: an 8-byte field on an 8-bit bus takes
-    one here instead of eight, and FrankaState's subscriber 300 instead of 2,500.
+    one here instead of eight, and FrankaState's converter pair 392 instead of 2,494.
     """
     step, top = len(data), len(target)
 

@@ -3,17 +3,39 @@
 Both guards (`rfc.lib.converters.guard`, `rfc.lib.converters.prefix_guard`) feed the frame
 they hold to a checker while they store it; every output of the checker is taken at once (the
 guard holds those inputs high), and its record's ``msg_error`` and ``error_reason`` decide
-whether the frame goes on.
+whether the frame goes on. Its fields are read by nobody, so it captures none
+(`without_fields`).
 """
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 from myhdl import Signal, intbv
 
 from rfc.lib.converters.ports import COUNTER_BITS, Direction, Side, ports_of
-from rfc.lib.converters.steps import Plan
+from rfc.lib.converters.steps import Plan, Record, Slot, SlotRole
 from rfc.lib.converters.toplevel import port_signals
 from rfc.lib.types import SignalLike
+
+
+def without_fields(plan: Plan) -> Plan:
+    """`plan` with no field port: the walk, lengths and CDR header on which the verdict rests.
+
+    A checker built from it holds none of the subscriber's field registers, which synthesis
+    would remove and GHDL would run at every clock edge (Franka's guard had 65).
+    """
+    steps = tuple(
+        replace(step, slots=tuple(_unported(slot) for slot in step.slots))
+        if isinstance(step, Record)
+        else step
+        for step in plan.steps
+    )
+    return replace(plan, steps=steps)
+
+
+def _unported(slot: Slot) -> Slot:
+    return replace(slot, port=None) if slot.role is SlotRole.FIELD else slot
 
 
 def checker_signals(plan: Plan) -> tuple[dict[str, SignalLike], list[SignalLike]]:

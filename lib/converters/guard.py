@@ -18,7 +18,7 @@ from typing import Any
 from myhdl import Signal, always_comb, always_seq, block, intbv
 
 from rfc.lib.axi_stream import STREAM, AxiStream
-from rfc.lib.converters.checker import checker_ports, checker_signals
+from rfc.lib.converters.checker import checker_ports, checker_signals, without_fields
 from rfc.lib.converters.malformed import DROP_REASONS, Reason, counter_name, reason_counter
 from rfc.lib.converters.ports import COUNTER_BITS, REASON_BITS, Direction, Port, PortRole
 from rfc.lib.converters.ram import ram
@@ -84,11 +84,12 @@ def frame_guard(plan: Plan, depth: int, **ports: Any) -> Any:
     c_valid, c_ready = Signal(bool(0)), Signal(bool(0))
     drop, reason = Signal(bool(0)), Signal(intbv(0)[REASON_BITS:])
 
-    checker, readies = checker_signals(plan)
+    checking = without_fields(plan)
+    checker, readies = checker_signals(checking)
     verdict, failed = checker["msg_valid"], checker["msg_error"]
     cause = Signal(intbv(0)[REASON_BITS:])
     inputs = (s_tdata, s_tkeep, c_valid, c_ready, s_tlast)
-    parser = rfc_subscriber(plan, **checker_ports(clk, rst, inputs, cause, checker))
+    parser = rfc_subscriber(checking, **checker_ports(clk, rst, inputs, cause, checker))
     storing, waiting, sending = int(_State.STORE), int(_State.VERDICT), int(_State.SEND)
     maximum = int(Reason.MAXIMUM)
 

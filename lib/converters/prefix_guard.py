@@ -30,7 +30,7 @@ from typing import Any
 from myhdl import ResetSignal, Signal, always, always_comb, always_seq, block, intbv
 
 from rfc.lib.axi_stream import AxiStream
-from rfc.lib.converters.checker import checker_ports, checker_signals
+from rfc.lib.converters.checker import checker_ports, checker_signals, without_fields
 from rfc.lib.converters.chunk_length import LENGTH_BITS
 from rfc.lib.converters.frame_length import frame_length_circuit, length_formula
 from rfc.lib.converters.guard import (
@@ -75,6 +75,7 @@ def prefix_guard(checking: Plan, depth: int, **ports: Any) -> Any:
             `SLACK_BEATS`.
         ports: One signal per name of `prefix_guard_ports`.
     """
+    checking = without_fields(checking)
     clk, rst = ports["clk"], ports["rst"]
     s_tdata, s_tkeep, s_tvalid, s_tready, s_tlast = AxiStream.named(ports, "s_axis").signals()
     inner, outer = guard_stream(ports), AxiStream.named(ports, "m_axis")

@@ -16,7 +16,7 @@ from pathlib import Path
 
 from rfc.driver import compile_spec
 from rfc.lower.system.generate import generate_system
-from rfc.toolchain.yosys import module_estimate
+from rfc.toolchain.module_estimates import module_estimate
 
 ROOT = Path(__file__).resolve().parents[1]
 SYSTEMS = {

@@ -30,14 +30,14 @@ _MODULES = {
     "synthesize_verilog": "ghdl",
     "synthesize_vhdl": "ghdl",
     "TimingPath": "sta",
-    "ModuleEstimate": "yosys",
+    "ModuleEstimate": "module_estimates",
     "Resources": "yosys",
-    "estimate_modules": "yosys",
+    "estimate_modules": "module_estimates",
     "estimate_resources": "yosys",
-    "crossing_timing": "yosys",
+    "crossing_timing": "module_estimates",
     "estimate_timing": "yosys",
-    "logic_timing": "yosys",
-    "module_estimate": "yosys",
+    "logic_timing": "module_estimates",
+    "module_estimate": "module_estimates",
 }
 
 __all__ = sorted(_MODULES)

@@ -1,13 +1,10 @@
 """Resource and timing estimates without vendor tools: Yosys `synth_xilinx` for the 7-series.
 
-`module_estimate` maps one module of rfc's own Verilog out of context with `-abc9` (delay-aware
-LUT mapping), counts its cells, times it with `sta` and keeps its boundary logic (the mapped
-cells between its ports and its first registers), all cached by the content of its file, its
-module's name left out (a system's estimate sums its modules, so a rebuild or a sibling system
-that shares blocks maps only what changed; two builds that miss one module at once map it
-once); `estimate_modules` runs several at once, the largest first, and `logic_timing` times a
-whole logic from them: each block's own path, and the paths that cross blocks from the
-modules' boundary logic (`crossing_timing`), without mapping or reading their insides again.
+The scripts rfc runs and how: `map_module` maps one module of rfc's own Verilog out of context
+with `-abc9` (delay-aware LUT mapping), counts its cells, times it with `sta` and keeps its
+boundary logic (the mapped cells between its ports and its first registers), reading only the
+cell libraries the module needs; `flattened_timing` times mapped modules together.
+`rfc.toolchain.module_estimates` caches the first and times a whole logic with the second.
 `estimate_resources` and `estimate_timing` go through GHDL's synthesis for designs that exist
 only in VHDL (a scheduler or converter on its own).
 """
@@ -15,24 +12,16 @@ only in VHDL (a scheduler or converter on its own).
 from __future__ import annotations
 
 import dataclasses
-import fcntl
-import hashlib
 import json
-import os
-import re
 import shutil
 import subprocess
 import tempfile
-import threading
-from collections.abc import Callable, Iterator, Mapping, Sequence
-from concurrent.futures import ThreadPoolExecutor
+from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
 
-from rfc.toolchain.cache import cache_root
-from rfc.toolchain.convert import canonical_lines
 from rfc.toolchain.ghdl import synthesize_verilog
 from rfc.toolchain.sta import TimingPath, parse_sta
 
@@ -95,15 +84,6 @@ def _synthesized(files: Sequence[Path], top: str) -> Iterator[Path]:
         yield verilog
 
 
-#: Changes whenever the way a module is mapped or timed changes, so old cache entries go unused.
-_FLOW = (
-    "synth_xilinx -family xc7 -noiopad -abc9 -flatten, no cells_xtra, no brams map, sta, "
-    "boundary logic, v5"
-)
-#: The same for a module that instantiates others (`module_estimate`'s `submodules`).
-_SUBMODULE_FLOW = "submodules as black boxes, out of sta, their ports' cones in the boundary, v2"
-#: How many modules are mapped at once (the development machines have two cores).
-WORKERS = 2
 #: The 7-series cell library with its delays (`sta` needs them; `synth_xilinx` keeps none).
 _CELLS = "read_verilog -lib -specify +/xilinx/cells_sim.v"
 #: The rest of the 7-series primitives (clock managers, transceivers, I/O serializers, …) as
@@ -148,61 +128,7 @@ def _boundary(submodules: Sequence[str]) -> str:
 
 
 @dataclass(frozen=True)
-class ModuleEstimate:
-    """One module mapped to the 7-series out of context.
-
-    Attributes:
-        resources: Its cells.
-        timing: Its critical path, None when nothing in it is timed (a module of wires).
-        netlist: Its boundary logic, mapped (Verilog of 7-series cells): the cells on the paths
-            from its inputs to its first registers and from its last registers to its outputs,
-            for timing the paths that cross from one block into another.
-    """
-
-    resources: Resources
-    timing: TimingPath | None
-    netlist: Path
-
-
-def cache_directory() -> Path:
-    """Where module figures are kept: ``$RFC_CACHE_DIR/verilog`` or ``~/.cache/rfc/verilog``."""
-    return cache_root() / "verilog"
-
-
-def module_estimate(verilog: Path, top: str, submodules: Sequence[Path] = ()) -> ModuleEstimate:
-    """Map one Verilog file to the 7-series with `-abc9`; count and time its module `top`.
-
-    The modules `top` instantiates are in `submodules`, one per file named after it: they are
-    mapped on their own, so here they are black boxes, their cells not counted and their ports
-    taken as registered (`logic_timing` joins the paths across them).
-
-    The figures and the boundary logic are cached by the file's content with the module's
-    name left out, the submodules' files, and Yosys's version: the same block under another
-    name (a slice, a busy watch or a manager of a sibling system, named after its project) is
-    mapped once.
-
-    Raises:
-        RuntimeError: Yosys is missing or fails.
-    """
-    digest = hashlib.sha256()
-    for part in (_FLOW, _yosys_version(), *canonical_lines(_renamed(verilog.read_text(), top))):
-        digest.update(part.encode() + b"\n")
-    if submodules:
-        digest.update(_SUBMODULE_FLOW.encode() + b"\n")
-    for submodule in submodules:
-        digest.update(submodule.read_bytes())
-    entry = cache_directory() / f"{digest.hexdigest()}.json"
-    anonymous = entry.with_suffix(".v")  # the boundary logic, its module named _ANONYMOUS
-    if not (entry.is_file() and anonymous.is_file()):
-        entry.parent.mkdir(parents=True, exist_ok=True)
-        with _claimed(entry):
-            if not (entry.is_file() and anonymous.is_file()):  # nobody mapped it meanwhile
-                _map_module(_Module(verilog, top, tuple(submodules)), entry, anonymous)
-    return _read_entry(entry, _named(anonymous, top))
-
-
-@dataclass(frozen=True)
-class _Module:
+class Module:
     """A module to map: its file, its name, the files of the modules it instantiates."""
 
     verilog: Path
@@ -218,80 +144,55 @@ class _Module:
         return "".join(f"read_verilog -lib {f}; " for f in self.submodules)
 
 
-#: The name a cached module goes by, whatever the name it was mapped under.
-_ANONYMOUS = "rfc_estimated_module"
+def map_module(module: Module, work: Path) -> tuple[Resources, TimingPath | None, Path]:
+    """Map, count and time `module` in the folder `work`.
 
+    Returns its cells, its critical path and the file of its boundary logic; a module with a
+    block RAM is mapped twice more (Yosys 0.23's abc9 aborts on block RAMs).
 
-def _renamed(text: str, name: str, to: str = _ANONYMOUS) -> str:
-    """Verilog `text` with every occurrence of the identifier `name` made `to`."""
-    return re.sub(rf"(?<![\w$]){re.escape(name)}(?![\w$])", to, text)
-
-
-def _named(anonymous: Path, top: str) -> Path:
-    """The cached boundary logic `anonymous` as module `top` (written once, beside it)."""
-    named = anonymous.with_name(f"{anonymous.stem}.{top}.v")
-    if not named.is_file():
-        _publish(named, _renamed(anonymous.read_text(), _ANONYMOUS, top))
-    return named
-
-
-@contextmanager
-def _claimed(entry: Path) -> Iterator[None]:
-    """Hold `entry`'s lock: of two processes (or threads) needing one module, one maps it.
-
-    Parallel builds and test workers sharing a cache would otherwise both map a module they
-    both miss (minutes for an accelerator); the second waits and reads the first's figures.
+    Raises:
+        RuntimeError: Yosys is missing or fails.
     """
-    with entry.with_suffix(".lock").open("a") as lock:
-        fcntl.flock(lock, fcntl.LOCK_EX)
-        try:
-            yield
-        finally:
-            fcntl.flock(lock, fcntl.LOCK_UN)
+    report = work / _STAT
+    try:
+        _run_mapping(
+            lambda libs: _estimate_script(module, work, libs), str(module.verilog), block_ram=False
+        )
+    except _BlockRamMapMissingError:
+        # Yosys 0.23's abc9 aborts on every block RAM (a mapping with it would fail after
+        # minutes): count with the plain mapping, time with the memories in distributed RAM
+        # (docs/performance.md, "Timing").
+        _run_mapping(
+            lambda libs: (
+                f"{_mapping(module, libraries=libs, abc9=False)}; tee -q -o {report} stat -json"
+            ),
+            str(module.verilog),
+            start=_Libraries(block_ram=True),
+        )
+        _run_mapping(
+            lambda libs: (
+                f"{_mapping(module, '-nobram', libraries=libs)}; "
+                f"{_timing_and_boundary(module, work)}"
+            ),
+            str(module.verilog),
+        )
+    return _resources(report), parse_sta((work / _STA).read_text()), work / _BOUNDARY_LOGIC
 
 
-def _map_module(module: _Module, entry: Path, anonymous: Path) -> None:
-    """Map, count and time `module`; publish its figures and boundary logic.
+def flattened_timing(files: Sequence[Path], top: str) -> TimingPath | None:
+    """`sta` of module `top` over mapped Verilog `files`, flattened: its critical path.
 
-    The figures go to `entry`, the boundary logic to `anonymous` with the module renamed
-    `_ANONYMOUS` (`_named` gives it back under any name).
+    Raises:
+        RuntimeError: Yosys is missing or fails.
     """
-    top = module.top
-    with tempfile.TemporaryDirectory(prefix="rfc-synth-") as scratch:
-        work = Path(scratch)
-        report = work / _STAT
-        try:
-            _run_mapping(
-                lambda libs: _estimate_script(module, work, libs),
-                str(module.verilog),
-                block_ram=False,
-            )
-        except _BlockRamMapMissingError:
-            # Yosys 0.23's abc9 aborts on every block RAM (a mapping with it would fail after
-            # minutes): count with the plain mapping, time with the memories in distributed
-            # RAM (docs/performance.md, "Timing").
-            _run_mapping(
-                lambda libs: (
-                    f"{_mapping(module, libraries=libs, abc9=False)}; tee -q -o {report} stat -json"
-                ),
-                str(module.verilog),
-                start=_Libraries(block_ram=True),
-            )
-            _run_mapping(
-                lambda libs: (
-                    f"{_mapping(module, '-nobram', libraries=libs)}; "
-                    f"{_timing_and_boundary(module, work)}"
-                ),
-                str(module.verilog),
-            )
-        resources = _resources(report)
-        timing = parse_sta((work / _STA).read_text())
-        _publish(anonymous, _renamed((work / _BOUNDARY_LOGIC).read_text(), top))
-    value = {
-        "resources": dataclasses.asdict(resources),
-        "timing": None if timing is None else dataclasses.asdict(timing),
-    }
-    _publish(entry, json.dumps(value))
+    with tempfile.TemporaryDirectory(prefix="rfc-sta-") as scratch:
+        log = Path(scratch) / "sta.log"
+        _run_yosys(
+            f"{_CELLS}; read_verilog {' '.join(map(str, files))}; hierarchy -top {top}; "
+            f"flatten; rename -wire {_REGISTERS}; tee -q -o {log} sta",
+            top,
+        )
+        return parse_sta(log.read_text())
 
 
 #: What `estimate_script` writes in its folder: cell counts, `sta`'s report, boundary logic.
@@ -305,7 +206,7 @@ def estimate_script(verilog: Path, top: str, work: Path, submodules: Sequence[Pa
     the boundary logic (``boundary.v``). tools/profile_estimate.py runs it with ``yosys -d``
     to see where a module's mapping spends its time.
     """
-    return _estimate_script(_Module(verilog, top, tuple(submodules)), work)
+    return _estimate_script(Module(verilog, top, tuple(submodules)), work)
 
 
 @dataclass(frozen=True)
@@ -329,7 +230,7 @@ class _Libraries:
 _FEWEST_LIBRARIES = _Libraries()
 
 
-def _estimate_script(module: _Module, work: Path, libraries: _Libraries = _FEWEST_LIBRARIES) -> str:
+def _estimate_script(module: Module, work: Path, libraries: _Libraries = _FEWEST_LIBRARIES) -> str:
     return (
         f"{_mapping(module, libraries=libraries)}; tee -q -o {work / _STAT} stat -json; "
         f"{_timing_and_boundary(module, work)}"
@@ -337,7 +238,7 @@ def _estimate_script(module: _Module, work: Path, libraries: _Libraries = _FEWES
 
 
 def _mapping(
-    module: _Module, options: str = "", libraries: _Libraries = _FEWEST_LIBRARIES, abc9: bool = True
+    module: Module, options: str = "", libraries: _Libraries = _FEWEST_LIBRARIES, abc9: bool = True
 ) -> str:
     """Read `module` and map it to the 7-series, flattened (with `-abc9` unless told otherwise)."""
     flow = " ".join(filter(None, ("-abc9" if abc9 else "", "-flatten", options)))
@@ -362,7 +263,7 @@ def _synth_xilinx(top: str, options: str, libraries: _Libraries) -> str:
     )
 
 
-def _timing_and_boundary(module: _Module, work: Path) -> str:
+def _timing_and_boundary(module: Module, work: Path) -> str:
     """Time the mapped `module` into ``work/sta.log``; keep its boundary logic in ``boundary.v``."""
     submodules = [f.stem for f in module.submodules]
     # the timing deleted the black boxes: their ports' directions steer the cones again
@@ -371,87 +272,6 @@ def _timing_and_boundary(module: _Module, work: Path) -> str:
         f"select -set boundary {_boundary(submodules)}; setattr -set keep 1 @boundary; "
         f"delete c:* @boundary %d; opt_clean; write_verilog -noattr {work / _BOUNDARY_LOGIC}"
     )
-
-
-def estimate_modules(
-    modules: Sequence[tuple[Path, str]], submodules: Mapping[str, Sequence[Path]] | None = None
-) -> list[ModuleEstimate]:
-    """`module_estimate` of each (file, module), `WORKERS` Yosys processes at a time.
-
-    `submodules` gives, by module name, the files of the modules it instantiates (none when
-    missing). The largest files start first: an accelerator's mapping takes minutes where the
-    converters take seconds, so the others fill the second worker around it instead of
-    delaying its start.
-    """
-    children = submodules or {}
-    with ThreadPoolExecutor(max_workers=WORKERS) as pool:
-        started = {
-            module: pool.submit(module_estimate, *module, children.get(module[1], ()))
-            for module in sorted(modules, key=lambda m: m[0].stat().st_size, reverse=True)
-        }
-        return [started[module].result() for module in modules]
-
-
-def crossing_timing(netlists: Sequence[Path], top_verilog: Path, top: str) -> TimingPath | None:
-    """The critical path among the paths that leave or enter a block of a whole logic.
-
-    `netlists` are the modules' boundary logic (`ModuleEstimate.netlist`): every path that
-    crosses from one block into another runs through them from register to register, so `sta`
-    of the top level over them, flattened, finds the latest such path as it would over the
-    whole netlists, at a fraction of their size. Paths inside one block are the modules' own.
-    The result is cached by the content of every file.
-
-    Raises:
-        RuntimeError: Yosys is missing or fails.
-    """
-    digest = hashlib.sha256()
-    for part in (_FLOW, _yosys_version(), top, *canonical_lines(top_verilog.read_text())):
-        digest.update(part.encode() + b"\n")
-    for netlist in netlists:
-        digest.update(netlist.read_bytes())
-    entry = cache_directory() / f"{digest.hexdigest()}.system.json"
-    if entry.is_file():
-        value = json.loads(entry.read_text())
-        return None if value is None else TimingPath(**value)
-    with tempfile.TemporaryDirectory(prefix="rfc-sta-") as scratch:
-        log = Path(scratch) / "sta.log"
-        files = " ".join(str(f) for f in (*netlists, top_verilog))
-        _run_yosys(
-            f"{_CELLS}; read_verilog {files}; hierarchy -top {top}; flatten; "
-            f"rename -wire {_REGISTERS}; tee -q -o {log} sta",
-            top,
-        )
-        timing = parse_sta(log.read_text())
-    entry.parent.mkdir(parents=True, exist_ok=True)
-    _publish(entry, json.dumps(None if timing is None else dataclasses.asdict(timing)))
-    return timing
-
-
-def logic_timing(
-    instances: Mapping[str, ModuleEstimate], top_verilog: Path, top: str
-) -> TimingPath | None:
-    """The critical path of a whole logic, from its blocks' estimates (by instance label).
-
-    A path of the flattened logic either stays inside one block, where it is that module's own
-    (its ports taken as registered: a path from an input there is never longer than the real
-    one through that input, which crosses), or crosses into or out of a block, where
-    `crossing_timing` finds it. The latest of them is the one `sta` of the whole flattened
-    netlist finds; a path inside a block is named by its instance (``label.register``).
-
-    Raises:
-        RuntimeError: Yosys is missing or fails.
-    """
-    netlists = list(dict.fromkeys(module.netlist for module in instances.values()))
-    paths = [crossing_timing(netlists, top_verilog, top)]
-    paths += [_inside(label, module.timing) for label, module in instances.items()]
-    return max((p for p in paths if p is not None), key=lambda p: p.delay_ps, default=None)
-
-
-def _inside(label: str, path: TimingPath | None) -> TimingPath | None:
-    """A module's own path, named as it lies in the whole logic (under its instance label)."""
-    if path is None:
-        return None
-    return dataclasses.replace(path, start=f"{label}.{path.start}", end=f"{label}.{path.end}")
 
 
 def estimate_timing(files: Sequence[Path], top: str) -> TimingPath | None:
@@ -463,7 +283,7 @@ def estimate_timing(files: Sequence[Path], top: str) -> TimingPath | None:
     """
     with _synthesized(files, top) as verilog:
         log = verilog.parent / "sta.log"
-        module = _Module(verilog, top)
+        module = Module(verilog, top)
         _run_mapping(
             lambda libs: f"{_mapping(module, libraries=libs)}; {_timing_commands(top, log)}", top
         )
@@ -489,23 +309,6 @@ def _timing_commands(top: str, log: Path, black_boxes: Sequence[str] = ()) -> st
         f"delete =A:blackbox =A:whitebox; {_CELLS}; hierarchy -top {top}; "
         f"rename -wire {_REGISTERS}; {sta}"
     )
-
-
-def _read_entry(entry: Path, netlist: Path) -> ModuleEstimate:
-    value = json.loads(entry.read_text())
-    timing = value["timing"]
-    return ModuleEstimate(
-        Resources(**value["resources"]),
-        None if timing is None else TimingPath(**timing),
-        netlist,
-    )
-
-
-def _publish(path: Path, text: str) -> None:
-    """Write a cache file whole or not at all (another process may be reading the cache)."""
-    partial = path.with_suffix(f"{path.suffix}.{os.getpid()}.{threading.get_ident()}.tmp")
-    partial.write_text(text)
-    partial.replace(path)
 
 
 def _run_mapping(
@@ -564,7 +367,8 @@ class _BlockRamMapMissingError(RuntimeError):
 
 
 @cache
-def _yosys_version() -> str:
+def yosys_version() -> str:
+    """`yosys -V`: part of every cached figure's key."""
     executable = shutil.which("yosys")
     if executable is None:
         raise RuntimeError("yosys is not installed; run tools/setup.sh")

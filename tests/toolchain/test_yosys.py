@@ -7,7 +7,7 @@ from concurrent.futures import ThreadPoolExecutor
 
 import pytest
 
-from rfc.toolchain import convert_myhdl, crossing_timing, yosys
+from rfc.toolchain import convert_myhdl, crossing_timing, module_estimates, yosys
 from tests.toolchain.counter import counter_instance
 
 COUNTER = """
@@ -50,7 +50,9 @@ def test_two_builds_needing_one_module_at_once_map_it_once(tmp_path, monkeypatch
     source.write_text(COUNTER)
     scripts = recorded_scripts(monkeypatch)
     with ThreadPoolExecutor(max_workers=2) as pool:
-        first, second = pool.map(lambda _: yosys.module_estimate(source, "counter"), range(2))
+        first, second = pool.map(
+            lambda _: module_estimates.module_estimate(source, "counter"), range(2)
+        )
     assert len(scripts) == 1
     assert first == second
     assert first.resources.ff == 8
@@ -71,10 +73,10 @@ def test_the_largest_module_is_mapped_first_and_figures_come_back_in_the_order_a
         started.append((top, tuple(submodules)))
         return top
 
-    monkeypatch.setattr(yosys, "module_estimate", recorded)
-    monkeypatch.setattr(yosys, "WORKERS", 1)
+    monkeypatch.setattr(module_estimates, "module_estimate", recorded)
+    monkeypatch.setattr(module_estimates, "WORKERS", 1)
     inside = {"large": [files[0][0]]}  # the large module instantiates the small one
-    assert yosys.estimate_modules(files, inside) == ["small", "large", "medium"]
+    assert module_estimates.estimate_modules(files, inside) == ["small", "large", "medium"]
     assert started == [("large", (files[0][0],)), ("medium", ()), ("small", ())]
 
 
@@ -94,7 +96,7 @@ def test_a_block_under_another_name_is_mapped_once_and_named_as_each_instance_wa
         run_yosys(script, what)
 
     monkeypatch.setattr(yosys, "_run_yosys", counted)
-    first, second = (yosys.module_estimate(files[n], n) for n in files)
+    first, second = (module_estimates.module_estimate(files[n], n) for n in files)
     assert len(scripts) == 1
     assert (first.resources, first.timing) == (second.resources, second.timing)
     assert "module first_counter" in first.netlist.read_text()
@@ -111,7 +113,7 @@ def test_a_vhdl_design_is_counted_and_timed_as_its_verilog_is(tmp_path, monkeypa
     # GHDL's synthesis of the VHDL and MyHDL's Verilog of one counter map to the same cells
     monkeypatch.setenv("RFC_CACHE_DIR", str(tmp_path / "cache"))
     *vhdl, verilog = convert_myhdl(counter_instance(), "counter8", tmp_path / "hdl")
-    mapped = yosys.module_estimate(verilog, "counter8")
+    mapped = module_estimates.module_estimate(verilog, "counter8")
     assert yosys.estimate_resources(vhdl, "counter8") == mapped.resources
     timed = yosys.estimate_timing(vhdl, "counter8")
     assert timed is not None
@@ -130,12 +132,12 @@ endmodule
 """
 
 
-def _estimated(tmp_path, monkeypatch, top: str, verilog: str) -> yosys.ModuleEstimate:
+def _estimated(tmp_path, monkeypatch, top: str, verilog: str) -> module_estimates.ModuleEstimate:
     """`module_estimate` of module `top` of `verilog`, in a module cache of the test's own."""
     monkeypatch.setenv("RFC_CACHE_DIR", str(tmp_path / "cache"))
     source = tmp_path / f"{top}.v"
     source.write_text(verilog)
-    return yosys.module_estimate(source, top)
+    return module_estimates.module_estimate(source, top)
 
 
 def test_a_module_with_a_block_ram_is_counted_in_block_ram_and_timed(tmp_path, monkeypatch):
@@ -181,7 +183,7 @@ def test_mapping_with_fewer_libraries_gives_synth_xilinxs_own_netlist(tmp_path, 
             script = (
                 f"read_verilog {source}; synth_xilinx -family xc7 -noiopad -abc9 -flatten "
                 f"-top {top}; tee -q -o {work / 'stat.json'} stat -json; "
-                f"{yosys._timing_and_boundary(yosys._Module(source, top), work)}"
+                f"{yosys._timing_and_boundary(yosys.Module(source, top), work)}"
             )
         yosys._run_yosys(script, flow)
         outputs[flow] = [_numbered_alike((work / f).read_text()) for f in yosys_outputs]

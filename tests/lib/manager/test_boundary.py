@@ -16,7 +16,7 @@ import pytest
 from rfc.lib.manager.entity import ManagerShape
 from rfc.lib.schedulers.spec import Algorithm, SchedulerSpec
 from rfc.lower.system.components import manager_component
-from rfc.toolchain.yosys import module_estimate
+from rfc.toolchain.module_estimates import module_estimate
 
 #: Yosys' internal flip-flop cells (every kind of reset and enable), and nothing else.
 FLIP_FLOP_PREFIXES = ("$_DFF_", "$_DFFE_", "$_SDFF_", "$_SDFFE_", "$_SDFFCE_")

@@ -11,11 +11,12 @@ import pytest
 from myhdl import ResetSignal, Signal, block, intbv
 
 from rfc.lib.axi_stream import AxiStream
+from rfc.lib.converters.toplevel import elaboration
 from rfc.lib.manager.mux import chunk_mux
 from rfc.lib.schedulers.model import model_of
 from rfc.lib.schedulers.spec import Algorithm, SchedulerSpec
 from rfc.runtime.protocol import HEADER_SIZE, Chunk, ChunkFlags, Reassembler
-from rfc.toolchain import convert_myhdl, run_cocotb, start_new_design
+from rfc.toolchain import convert_myhdl, run_cocotb
 
 PUBLISHERS = 3
 
@@ -53,23 +54,23 @@ def mux_files(spec, width, directory):
             scheduler=spec,
         )
 
-    start_new_design()
-    instance = top(
-        Signal(bool(0)),
-        ResetSignal(0, active=1, isasync=False),
-        vector(n * width),
-        vector(n * lanes),
-        vector(n),
-        vector(n),
-        vector(n),
-        vector(n * 32),
-        vector(width),
-        vector(lanes),
-        Signal(bool(0)),
-        Signal(bool(0)),
-        Signal(bool(0)),
-    )
-    return convert_myhdl(instance, "mux", directory, verilog=False)
+    with elaboration():
+        instance = top(
+            Signal(bool(0)),
+            ResetSignal(0, active=1, isasync=False),
+            vector(n * width),
+            vector(n * lanes),
+            vector(n),
+            vector(n),
+            vector(n),
+            vector(n * 32),
+            vector(width),
+            vector(lanes),
+            Signal(bool(0)),
+            Signal(bool(0)),
+            Signal(bool(0)),
+        )
+        return convert_myhdl(instance, "mux", directory, verilog=False)
 
 
 def check_chunks(chunks, messages, preemptive):

@@ -14,6 +14,7 @@ from rfc.lib.arith.convert_hdl import (
     fixed_to_float_pipelined,
     float_to_fixed_pipelined,
 )
+from rfc.lib.converters.toplevel import elaboration
 from rfc.lib.fixed import FixedFormat, fixed_to_float, float_to_bits, float_to_fixed
 from rfc.toolchain import convert_myhdl, module_estimate
 from tests.lib.fixed.strategies import floats_near, formats, sample_floats
@@ -89,9 +90,12 @@ def test_converted_vhdl_matches_the_models_under_backpressure(tmp_path):
     fmt = FixedFormat(50, 44)
     values = sample_floats(fmt, 120)
     signals = ports(fmt)
-    to_fixed = convert_myhdl(
-        float_to_fixed_pipelined(*(signals[n] for n in TO_FIXED), fmt), "to_fixed", tmp_path / "a"
-    )
+    with elaboration():
+        to_fixed = convert_myhdl(
+            float_to_fixed_pipelined(*(signals[n] for n in TO_FIXED), fmt),
+            "to_fixed",
+            tmp_path / "a",
+        )
     want = to_fixed_rows(values, fmt)
     run = run_handshake(
         to_fixed,
@@ -103,9 +107,12 @@ def test_converted_vhdl_matches_the_models_under_backpressure(tmp_path):
     assert [signed(r, fmt.width) for r in run.outputs["raw"]] == want["raw"]
     assert run.outputs["overflow"] == want["overflow"]
     assert run.outputs["invalid"] == want["invalid"]
-    to_float = convert_myhdl(
-        fixed_to_float_pipelined(*(signals[n] for n in TO_FLOAT), fmt), "to_float", tmp_path / "b"
-    )
+    with elaboration():
+        to_float = convert_myhdl(
+            fixed_to_float_pipelined(*(signals[n] for n in TO_FLOAT), fmt),
+            "to_float",
+            tmp_path / "b",
+        )
     raws = want["raw"]
     run = run_handshake(
         to_float,
@@ -144,7 +151,8 @@ def test_the_converters_stay_within_half_a_100_mhz_period_of_cell_delay(tmp_path
     block, order = (
         (float_to_fixed_pipelined, TO_FIXED) if to_fixed else (fixed_to_float_pipelined, TO_FLOAT)
     )
-    files = convert_myhdl(block(*(signals[n] for n in order), fmt), "convert", tmp_path)
+    with elaboration():
+        files = convert_myhdl(block(*(signals[n] for n in order), fmt), "convert", tmp_path)
     timing = module_estimate(files[-1], "convert").timing  # what `--estimate` reports of it
     # The combinational float → fixed conversion between two registers took 8.4 ns.
     assert timing is not None

@@ -11,6 +11,7 @@ from myhdl import ResetSignal, Signal
 
 from rfc.lib.arith.dot import dot_latency, dot_product
 from rfc.lib.arith.dot_hdl import constant_dot, fixed_dot
+from rfc.lib.converters.toplevel import elaboration
 from rfc.lib.fixed import FixedFormat
 from rfc.toolchain import convert_myhdl
 from tests.lib.arith.flat import flat_ports, flat_top
@@ -155,7 +156,8 @@ def test_converted_vhdl_matches_the_model_under_backpressure(tmp_path, constant)
     b = [extreme_values(rng, WIDE, 60).tolist() for _ in range(terms)]
     coefficients = (WIDE.max_raw, -(1 << 43), WIDE.min_raw) if constant else None
     top, arguments, _ = flat(WIDE, terms, coefficients)
-    files = convert_myhdl(top(*arguments), "dot", tmp_path / "hdl")
+    with elaboration():
+        files = convert_myhdl(top(*arguments), "dot", tmp_path / "hdl")
     inputs = {f"a{i}": [unsigned(x, WIDE.width) for x in a[i]] for i in range(terms)}
     if constant:
         want = [dot_product(v, coefficients, WIDE) for v in zip(*a, strict=True)]
@@ -172,7 +174,8 @@ def test_converted_vhdl_matches_the_model_under_backpressure(tmp_path, constant)
 
 def test_gray_weights_map_to_three_registered_dsp48s_within_half_a_100_mhz_period(tmp_path):
     top, arguments, _ = flat(LUMA, 3, LUMA_WEIGHTS)
-    files = convert_myhdl(top(*arguments), "gray", tmp_path)
+    with elaboration():
+        files = convert_myhdl(top(*arguments), "gray", tmp_path)
     mapped = map_xc7(files[-1], "gray", tmp_path)  # Yosys reads the Verilog
     assert len(mapped.dsp_registers) == 3
     # the operand (A) and product (M) registers sit in the slices; B is the constant

@@ -28,6 +28,7 @@ from rfc.lib.arith.engine import (
 )
 from rfc.lib.arith.engine_hdl import engine, zero_result_bits
 from rfc.lib.arith.transform import transform_multiply, transform_program
+from rfc.lib.converters.toplevel import elaboration
 from rfc.lib.fixed import FixedFormat, bits_to_float, float_to_bits
 from rfc.toolchain import convert_myhdl, module_estimate
 from tests.lib.arith.flat import flat_ports, flat_top
@@ -158,7 +159,8 @@ def test_converted_vhdl_with_flat_ports_matches_the_model(tmp_path):
     raw = to_raw(rigid(rng, 8), WORD) + to_raw(rigid(rng, 8), WORD)
     messages = [[int(column[n]) for column in raw] for n in range(8)]
     top = flat_top(transform_multiply, ORDER, GROUPS, [WORD])
-    files = convert_myhdl(top(**flat_ports(ports(WORD))), "transform", tmp_path / "hdl")
+    with elaboration():
+        files = convert_myhdl(top(**flat_ports(ports(WORD))), "transform", tmp_path / "hdl")
     inputs = {k: [unsigned(v, 50) for v in values] for k, values in inputs_of(messages).items()}
     result = run_handshake(files, "transform", inputs, [f"c{i}" for i in range(12)], tmp_path)
     program = transform_program(WORD)
@@ -228,7 +230,8 @@ def test_a_float_engine_meets_100_mhz_with_margin(tmp_path):
     # and the memory; at most half a 100 MHz period of cell delay, with margin
     flat = flat_ports(float_engine_ports())
     top = flat_top(engine, ENGINE_ORDER, {"inputs": 3, "outputs": 3}, [rotation_program()])
-    files = convert_myhdl(top(**flat), "engine", tmp_path)
+    with elaboration():
+        files = convert_myhdl(top(**flat), "engine", tmp_path)
     timing = module_estimate(files[-1], "engine").timing  # what `--estimate` reports of it
     assert timing is not None
     assert timing.delay_ps <= 4800

@@ -19,6 +19,7 @@ from rfc.lib.arith.mac_hdl import (
     mac_latency,
 )
 from rfc.lib.arith.pipeline import handshakes, stage_register
+from rfc.lib.converters.toplevel import elaboration
 from rfc.lib.fixed import FixedFormat
 from rfc.toolchain import convert_myhdl
 from tests.lib.arith.synth import map_xc7
@@ -148,13 +149,14 @@ def test_converted_vhdl_matches_the_model_under_backpressure(tmp_path, mac):
     a[:4] = b[:4] = [WIDE.min_raw, WIDE.max_raw, WIDE.min_raw, -1]  # saturation both ways
     firsts = [i % 5 == 0 for i in range(80)]
     signals = ports(WIDE)
-    if mac:
-        dut = fixed_mac(*(signals[n] for n in MAC_ORDER), WIDE)
-        want, output = running_sums(list(zip(a, b, strict=True)), firsts, WIDE), "total"
-    else:
-        dut = fixed_multiply(*(signals[n] for n in MULTIPLY_ORDER), WIDE)
-        want, output = [multiply(x, y, WIDE) for x, y in zip(a, b, strict=True)], "product"
-    files = convert_myhdl(dut, output, tmp_path / "hdl")
+    with elaboration():
+        if mac:
+            dut = fixed_mac(*(signals[n] for n in MAC_ORDER), WIDE)
+            want, output = running_sums(list(zip(a, b, strict=True)), firsts, WIDE), "total"
+        else:
+            dut = fixed_multiply(*(signals[n] for n in MULTIPLY_ORDER), WIDE)
+            want, output = [multiply(x, y, WIDE) for x, y in zip(a, b, strict=True)], "product"
+        files = convert_myhdl(dut, output, tmp_path / "hdl")
     inputs = {"a": [unsigned(x, 50) for x in a], "b": [unsigned(y, 50) for y in b]}
     if mac:
         inputs["first"] = [int(f) for f in firsts]
@@ -186,9 +188,10 @@ def test_a_pair_every_cycle(block):
 def test_a_one_slice_multiply_uses_all_four_dsp48_registers(tmp_path):
     fmt = FixedFormat(18, 16)  # 18 x 18 signed fits one DSP48E1 (25 x 18)
     signals = ports(fmt)
-    files = convert_myhdl(
-        fixed_multiply(*(signals[n] for n in MULTIPLY_ORDER), fmt), "mul", tmp_path
-    )
+    with elaboration():
+        files = convert_myhdl(
+            fixed_multiply(*(signals[n] for n in MULTIPLY_ORDER), fmt), "mul", tmp_path
+        )
     mapped = map_xc7(files[-1], "mul", tmp_path)
     assert mapped.dsp_registers == ({"AREG": 1, "BREG": 1, "MREG": 1, "PREG": 1},)
     # Only the rounding is left in the fabric: one register stage of flip-flops after the DSP.
@@ -239,9 +242,10 @@ def test_a_wide_exact_product_keeps_every_dsp48_registered_and_the_path_short(tm
     fmt = FixedFormat(46, 44)  # the pipelined quaternion core's components
     signals = ports(fmt)
     signals["product"] = FixedFormat(92, 88).signal()
-    files = convert_myhdl(
-        exact_with_handshake(*(signals[n] for n in MULTIPLY_ORDER)), "exact", tmp_path
-    )
+    with elaboration():
+        files = convert_myhdl(
+            exact_with_handshake(*(signals[n] for n in MULTIPLY_ORDER)), "exact", tmp_path
+        )
     mapped = map_xc7(files[-1], "exact", tmp_path)
     assert len(mapped.dsp_registers) == 6  # 2 x 3 limbs of 24 x 17 bits
     assert all(r["MREG"] == 1 and r["PREG"] == 1 for r in mapped.dsp_registers)
@@ -255,9 +259,10 @@ def test_converted_exact_multiply_gives_the_exact_product(tmp_path, width):
     fmt = FixedFormat(width, 0)
     signals = ports(fmt)
     signals["product"] = FixedFormat(2 * width, 0).signal()
-    files = convert_myhdl(
-        exact_with_handshake(*(signals[n] for n in MULTIPLY_ORDER)), "exact", tmp_path / "hdl"
-    )
+    with elaboration():
+        files = convert_myhdl(
+            exact_with_handshake(*(signals[n] for n in MULTIPLY_ORDER)), "exact", tmp_path / "hdl"
+        )
     rng = np.random.default_rng(width)
     a = [fmt.min_raw, fmt.max_raw, -5, *raw_values(rng, fmt, 30).tolist()]
     b = [fmt.min_raw, fmt.min_raw, 7, *raw_values(rng, fmt, 30).tolist()]

@@ -10,6 +10,7 @@ from myhdl import ResetSignal, Signal
 
 from rfc.lib.arith import SinCosConfig, sincos
 from rfc.lib.arith.sincos_hdl import sincos as sincos_block
+from rfc.lib.converters.toplevel import elaboration
 from rfc.toolchain import convert_myhdl
 from tests.support.cosim import run_handshake, signed, unsigned
 from tests.support.myhdl_stream import simulate_stream
@@ -104,9 +105,10 @@ def test_converted_vhdl_matches_the_model_under_backpressure(tmp_path, config, p
     fmt, out = config.angle_format, config.out_format
     rng = np.random.default_rng(3)
     angles = edge_angles(config) + rng.integers(fmt.min_raw, fmt.max_raw, 60).tolist()
-    files = convert_myhdl(
-        sincos_block(*arguments(ports(config), config, pipelined)), "sincos", tmp_path / "hdl"
-    )
+    with elaboration():
+        files = convert_myhdl(
+            sincos_block(*arguments(ports(config), config, pipelined)), "sincos", tmp_path / "hdl"
+        )
     cos, sin = sincos(np.array(angles), config)
     run = run_handshake(
         files,

@@ -156,8 +156,9 @@ def publish(
 
         return unit, clock, produce, collect
 
-    simulation = bench()
-    simulation.run_sim(quiet=1)
+    with elaboration():
+        simulation = bench()
+        simulation.run_sim(quiet=1)
     return frames, errors[0]
 
 

@@ -16,6 +16,7 @@ from myhdl import ResetSignal, Signal, StopSimulation, always, block, delay, ins
 from rfc.lib.converters.plan import plan
 from rfc.lib.converters.steps import Plan
 from rfc.lib.converters.tables import Kind, tables
+from rfc.lib.converters.toplevel import elaboration
 from rfc.lib.converters.transactions import transactions
 from rfc.lib.converters.walker import Walk, step_walker
 from rfc.messages.codec import encode
@@ -77,7 +78,8 @@ def walk_over(converters: Plan, frame: bytes) -> tuple[int, dict[str, list[bytes
 
         return walker, clock, drive
 
-    simulation = bench()
+    with elaboration():
+        simulation = bench()
     simulation.run_sim(quiet=1)
     simulation.quit_sim()
     return moved[0], {name: [bytes(b) for b in found] for name, found in marked.items()}

@@ -10,6 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from myhdl import ResetSignal, Signal, intbv
 
+from rfc.lib.converters.toplevel import elaboration
 from rfc.lib.cordic import CordicConfig, vectoring
 from rfc.lib.cordic.hdl import cordic_vectoring
 from rfc.toolchain import convert_myhdl
@@ -99,8 +100,9 @@ def test_converted_vhdl_matches_the_model_under_backpressure(tmp_path, config, p
     pairs = edge_pairs(config) + [
         (rng.randint(low, high), rng.randint(low, high)) for _ in range(150)
     ]
-    dut = cordic_vectoring(*arguments(cordic_ports(config), config, pipelined))
-    files = convert_myhdl(dut, "cordic", tmp_path)
+    with elaboration():
+        dut = cordic_vectoring(*arguments(cordic_ports(config), config, pipelined))
+        files = convert_myhdl(dut, "cordic", tmp_path)
     angles, magnitudes = expected(pairs, config)
     width = config.width
     run = run_handshake(

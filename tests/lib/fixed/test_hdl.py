@@ -7,6 +7,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from myhdl import Signal, block, delay, instance, intbv
 
+from rfc.lib.converters.toplevel import elaboration
 from rfc.lib.fixed import FixedFormat, fixed_to_float, float_to_bits, float_to_fixed
 from rfc.lib.fixed.hdl import fixed_to_float as fixed_to_float_block
 from rfc.lib.fixed.hdl import float_to_fixed as float_to_fixed_block
@@ -77,7 +78,8 @@ def test_myhdl_blocks_match_the_models(data):
 )
 def test_converted_vhdl_matches_the_models(tmp_path, fmt):
     values = sample_floats(fmt, 400)
-    files = convert_myhdl(round_trip(*ports(fmt), fmt), "round_trip", tmp_path / "hdl")
+    with elaboration():
+        files = convert_myhdl(round_trip(*ports(fmt), fmt), "round_trip", tmp_path / "hdl")
     seen = run_combinational(
         files,
         "round_trip",

@@ -14,7 +14,7 @@ import random
 import pytest
 from myhdl import Simulation, StopSimulation, always, delay, instance
 
-from rfc.lib.converters.toplevel import port_signals
+from rfc.lib.converters.toplevel import elaboration, port_signals
 from rfc.lib.manager.entity import ManagerShape, manager_body, manager_ports
 from rfc.lib.schedulers.spec import Algorithm, SchedulerSpec
 from rfc.runtime.protocol import Chunk, ChunkFlags, Reassembler, message_chunk
@@ -53,7 +53,8 @@ def run(shape: ManagerShape, mm2s: list[bytes], published: list[list[bytes]], cy
     ]
     lengths = [[len(m) for m in messages for _ in beats_of(m, lanes)] for messages in published]
 
-    dut = manager_body(shape, **ports)
+    with elaboration():  # MyHDL alone reads the source context of every caller
+        dut = manager_body(shape, **ports)
 
     @always(delay(5))
     def tick():

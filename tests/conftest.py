@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 from hypothesis import HealthCheck, settings
 
-from rfc.toolchain.convert import transient_signals
+from rfc.toolchain.myhdl_state import transient_signals
 from rfc.toolchain.verilator import compiler_cache
 
 ROOT = Path(__file__).resolve().parent.parent

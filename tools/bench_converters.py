@@ -35,12 +35,12 @@ from rfc.lib.converters.frame_length import frame_length_circuit, length_formula
 from rfc.lib.converters.loopback_run import loopback, run_frames  # noqa: E402
 from rfc.lib.converters.plan import plan  # noqa: E402
 from rfc.lib.converters.ports import Direction, Port, PortRole, Side, ports_of  # noqa: E402
-from rfc.lib.converters.toplevel import elaboration, port_signals, top_block  # noqa: E402
+from rfc.lib.converters.toplevel import port_signals, top_block  # noqa: E402
 from rfc.messages.codec import default_values, encode  # noqa: E402
 from rfc.messages.layout import flatten  # noqa: E402
 from rfc.messages.limits import Limits  # noqa: E402
 from rfc.messages.rosbags_adapter import Middleware, message_types  # noqa: E402
-from rfc.toolchain import convert_myhdl, estimate_resources  # noqa: E402
+from rfc.toolchain import convert_myhdl, elaboration, estimate_resources  # noqa: E402
 
 WIDTHS = (8, 32, 64)
 QUATERNION = "geometry_msgs/msg/Quaternion"

@@ -28,13 +28,13 @@ from rfc.lib.converters.guard import frame_guard, guard_ports
 from rfc.lib.converters.malformed import drop_gate, gate_ports
 from rfc.lib.converters.plan import plan
 from rfc.lib.converters.ports import Side
-from rfc.lib.converters.toplevel import elaboration, port_signals, top_block
+from rfc.lib.converters.toplevel import port_signals, top_block
 from rfc.messages.codec import default_values, encode
 from rfc.messages.layout import flatten
 from rfc.messages.limits import Limits
 from rfc.messages.rosbags_adapter import Middleware, message_types
 from rfc.passes.frame_size import frame_bound
-from rfc.toolchain import convert_myhdl, estimate_resources
+from rfc.toolchain import convert_myhdl, elaboration, estimate_resources
 
 QUATERNION, JOINTS = "geometry_msgs/msg/Quaternion", "sensor_msgs/msg/JointState"
 WIDTHS = (8, 32, 64)

@@ -27,13 +27,13 @@ from myhdl import StopSimulation, always, block, delay, instance
 from rfc.lib.converters.plan import plan
 from rfc.lib.converters.prefix_guard import DECLARED, prefix_guard, prefix_guard_ports
 from rfc.lib.converters.prefix_plan import SLACK_BEATS, checking_plan
-from rfc.lib.converters.toplevel import elaboration, port_signals, top_block
+from rfc.lib.converters.toplevel import port_signals, top_block
 from rfc.messages.layout import flatten
 from rfc.messages.limits import Limits
 from rfc.messages.rosbags_adapter import Middleware, message_types
 from rfc.messages.selection import select
 from rfc.passes.frame_size import frame_bound
-from rfc.toolchain import convert_myhdl, estimate_resources
+from rfc.toolchain import convert_myhdl, elaboration, estimate_resources
 
 IMAGE = "sensor_msgs/msg/Image"
 MAXIMA = Limits(string=64, fields={"data": 1920 * 1080 * 3})

@@ -89,8 +89,9 @@ def _known_blocks(
     A block that fails is not this pass's to report: the build converts it and says why.
     """
     from rfc.lib.arith.timing import blocks_in
-    from rfc.lib.converters.toplevel import elaboration, port_signals
+    from rfc.lib.converters.toplevel import port_signals
     from rfc.lib.interface import typed_block
+    from rfc.toolchain import elaboration
 
     project = design.project
     signatures = accelerator_signatures(block, project.bus_width, project.maxima)

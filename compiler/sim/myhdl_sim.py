@@ -18,7 +18,6 @@ from typing import Any
 
 from myhdl import ResetSignal, Signal, StopSimulation, block, delay, instance, intbv
 
-from rfc.lib.converters.toplevel import elaboration
 from rfc.messages.rosbags_adapter import BagMessage
 from rfc.runtime.arrivals import IDLE_FRACTION, ArrivalClock
 from rfc.runtime.core import Published, Runtime
@@ -26,7 +25,8 @@ from rfc.runtime.protocol import Chunk
 from rfc.runtime.stall import StallWatch, largest_output, pending_work
 from rfc.sim.busy import BusyWatch
 from rfc.sim.settings import ReplaySettings
-from rfc.toolchain.convert import transient_signals
+from rfc.toolchain import elaboration
+from rfc.toolchain.myhdl_state import transient_signals
 
 MyhdlFactory = Callable[..., Any]
 

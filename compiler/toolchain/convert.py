@@ -2,61 +2,18 @@
 
 from __future__ import annotations
 
-import contextlib
 import re
 import tempfile
 import threading
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from myhdl import _block as myhdl_block
-from myhdl import _simulator as myhdl_simulator
-
 from rfc.toolchain.modules import separate_modules
+from rfc.toolchain.myhdl_state import start_new_design
 
 #: MyHDL's converters are module-level singletons configured by attributes: one at a time.
 _CONVERTER_LOCK = threading.Lock()
-
-
-def start_new_design() -> None:
-    """Start MyHDL's instance naming afresh before elaborating a new design.
-
-    MyHDL keeps every instance name it ever gave in module-level sets and makes a repeated name
-    unique by appending a suffix per repetition, so a process elaborating many designs (a sweep,
-    a test worker) gets names that grow without bound until GHDL rejects them, and that differ
-    from run to run. It also numbers each block function's instances (``follow290``) by a count
-    of every call in the process, kept until a simulation ends. Names need only be unique within
-    one design, and must not depend on what the process built before (the same spec gives the
-    same VHDL). Call this before calling the top-level block function.
-    """
-    myhdl_block._name_set.clear()
-    myhdl_block._inst_name_set.clear()
-    for decorator in myhdl_simulator._blocks:
-        decorator.calls = 0
-        for bound in list(decorator.bound_functions.values()):
-            bound.calls = 0
-
-
-@contextlib.contextmanager
-def transient_signals() -> Iterator[None]:
-    """Have MyHDL forget, on exit, the signals created inside: they must not outlive it.
-
-    MyHDL (0.11.52) keeps every signal the process ever created in one list, never shrinks it,
-    and at the end of every simulation resets each signal in it to its initial value (a deep
-    copy each). A process that builds and simulates many designs (a test worker, a build
-    measuring its converters' latencies, a user's notebook) so keeps every signal alive and
-    simulates ever slower: 25 runs of a four-process bench took 0.9 s in a fresh process and
-    47 s after 200,000 signals had been created and dropped elsewhere. Wrap work whose signals
-    die with it, such as a bench built and run in one go. Contexts nest; only the entries added
-    inside are removed, MyHDL's list itself stays in place.
-    """
-    created = myhdl_simulator._signals
-    mark = len(created)
-    try:
-        yield
-    finally:
-        del created[mark:]
 
 
 #: The support package every MyHDL-generated VHDL file uses.

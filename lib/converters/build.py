@@ -18,9 +18,9 @@ from rfc.lib.converters.ports import Port, Side, dma_ports, ports_of
 from rfc.lib.converters.publisher import publisher_ports, rfc_publisher
 from rfc.lib.converters.steps import Plan
 from rfc.lib.converters.subscriber import rfc_subscriber, subscriber_ports
-from rfc.lib.converters.toplevel import elaboration, port_signals, top_block
+from rfc.lib.converters.toplevel import port_signals, top_block
 from rfc.lib.types import Instances
-from rfc.toolchain import convert_myhdl
+from rfc.toolchain import convert_myhdl, elaboration
 
 
 @dataclass(frozen=True)

@@ -25,7 +25,7 @@ from rfc.errors import RfcError, did_you_mean
 from rfc.lib.converters.loopback import LOOPBACK, loopback_ports, rfc_loopback
 from rfc.lib.converters.plan import plan
 from rfc.lib.converters.steps import Plan
-from rfc.lib.converters.toplevel import elaboration, port_signals, top_block
+from rfc.lib.converters.toplevel import port_signals, top_block
 from rfc.messages.codec import FrameError, Values, decode, default_values
 from rfc.messages.layout import FieldKind, Layout, flatten
 from rfc.messages.limits import Limits
@@ -40,7 +40,7 @@ from rfc.messages.rosbags_adapter import (
 )
 from rfc.messages.selection import select
 from rfc.messages.values import message_to_values, values_to_message
-from rfc.toolchain import GhdlError, convert_myhdl, simulate, synthesize_vhdl
+from rfc.toolchain import GhdlError, convert_myhdl, elaboration, simulate, synthesize_vhdl
 from rfc.toolchain.verilator import VerilatorError, run_testbench
 
 TESTBENCH = Path(__file__).parent / "hdl" / "loopback_tb.vhd"

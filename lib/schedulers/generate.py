@@ -25,7 +25,6 @@ from pathlib import Path
 
 import numpy as np
 
-from rfc.lib.converters.toplevel import elaboration
 from rfc.lib.schedulers.hardware import top_instance
 from rfc.lib.schedulers.model import model_of
 from rfc.lib.schedulers.spec import AnySchedulerSpec
@@ -33,6 +32,7 @@ from rfc.toolchain import (
     Resources,
     TimingPath,
     convert_myhdl,
+    elaboration,
     estimate_resources,
     estimate_timing,
 )

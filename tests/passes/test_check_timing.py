@@ -16,7 +16,7 @@ from pathlib import Path
 import pytest
 
 from rfc.lib.arith.timing import blocks_in, measured_timing, suggestion
-from rfc.lib.converters.toplevel import elaboration
+from rfc.toolchain import elaboration
 from rfc.toolchain.sta import ROUTING_FACTOR
 from tests.examples.quaternion_to_euler.example import core_arguments, core_ports, cores
 from tests.support.cli import run_rfc

@@ -6,9 +6,9 @@ import numpy as np
 from myhdl import block, delay, instance
 
 from rfc.dse.trace import Trace, bits_to_int, one_hot_index
-from rfc.lib.converters.toplevel import elaboration
 from rfc.lib.schedulers.hardware import scheduler_top, top_ports
 from rfc.lib.schedulers.spec import AnySchedulerSpec
+from rfc.toolchain import elaboration
 
 
 def simulate_myhdl(spec: AnySchedulerSpec, trace: Trace) -> np.ndarray:

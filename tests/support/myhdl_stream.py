@@ -12,7 +12,7 @@ from typing import Any
 
 from myhdl import Signal, StopSimulation, block, delay, instance
 
-from rfc.lib.converters.toplevel import elaboration
+from rfc.toolchain import elaboration
 from tests.support.cosim import HandshakeRun
 
 

@@ -29,7 +29,7 @@ from rfc.lib.converters.malformed import drop_gate, gate_ports
 from rfc.lib.converters.plan import plan
 from rfc.lib.converters.ports import Direction, Port, PortRole, Side, dma_ports, ports_of
 from rfc.lib.converters.steps import Plan
-from rfc.lib.converters.toplevel import elaboration, port_signals, top_block
+from rfc.lib.converters.toplevel import port_signals, top_block
 from rfc.lib.fork import fork_body
 from rfc.lib.hls.adapter import AdapterShape, hls_adapter
 from rfc.lib.manager.entity import ManagerShape, manager_ports, manager_top
@@ -38,7 +38,7 @@ from rfc.lower.netlist import EntityDecl
 from rfc.lower.system.conversion_cache import converted
 from rfc.lower.system.interfaces import declaration
 from rfc.messages.limits import Limits
-from rfc.toolchain import GhdlError, convert_myhdl, synthesize_verilog
+from rfc.toolchain import GhdlError, convert_myhdl, elaboration, synthesize_verilog
 
 
 @dataclass(frozen=True)

@@ -23,11 +23,12 @@ from rfc.lib.converters.guard import frame_guard, guard_ports
 from rfc.lib.converters.malformed import drop_gate, gate_ports
 from rfc.lib.converters.plan import plan
 from rfc.lib.converters.ports import Direction, Port, PortRole, Side, dma_ports, ports_of
-from rfc.lib.converters.toplevel import elaboration, port_signals, top_block
+from rfc.lib.converters.toplevel import port_signals, top_block
 from rfc.messages.codec import Values, default_values, encode
 from rfc.messages.limits import Limits
 from rfc.passes.check_hardware import subscriber_guard
-from rfc.toolchain.convert import transient_signals
+from rfc.toolchain import elaboration
+from rfc.toolchain.myhdl_state import transient_signals
 
 #: Cycles after which a measurement gives up (the block never answered).
 _LIMIT = 20_000

@@ -6,8 +6,7 @@ import numpy as np
 import pytest
 from myhdl import ResetSignal, Signal, intbv
 
-from rfc.lib.converters.toplevel import elaboration
-from rfc.toolchain import convert_myhdl
+from rfc.toolchain import convert_myhdl, elaboration
 from tests.examples.franka_fk.example import load, states, to_bits, to_float
 from tests.lib.arith.flat import flat_ports, flat_top
 from tests.support.cosim import run_handshake

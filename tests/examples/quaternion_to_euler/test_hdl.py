@@ -15,9 +15,8 @@ import math
 import numpy as np
 import pytest
 
-from rfc.lib.converters.toplevel import elaboration
 from rfc.lib.fixed import bits_to_float, float_to_bits
-from rfc.toolchain import convert_myhdl
+from rfc.toolchain import convert_myhdl, elaboration
 from tests.conftest import shared_file
 from tests.examples.quaternion_to_euler.example import (
     Core,

@@ -15,8 +15,8 @@ from rfc.lib.converters.ports import Side, dma_ports, ports_of
 from rfc.lib.converters.publisher import rfc_publisher
 from rfc.lib.converters.steps import Plan
 from rfc.lib.converters.subscriber import rfc_subscriber
-from rfc.lib.converters.toplevel import elaboration, port_signals, top_block
-from rfc.toolchain import convert_myhdl
+from rfc.lib.converters.toplevel import port_signals, top_block
+from rfc.toolchain import convert_myhdl, elaboration
 
 SHARED = ("clk", "rst")
 

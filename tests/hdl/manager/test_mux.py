@@ -11,12 +11,11 @@ import pytest
 from myhdl import ResetSignal, Signal, block, intbv
 
 from rfc.lib.axi_stream import AxiStream
-from rfc.lib.converters.toplevel import elaboration
 from rfc.lib.manager.mux import chunk_mux
 from rfc.lib.schedulers.model import model_of
 from rfc.lib.schedulers.spec import Algorithm, SchedulerSpec
 from rfc.runtime.protocol import HEADER_SIZE, Chunk, ChunkFlags, Reassembler
-from rfc.toolchain import convert_myhdl, run_cocotb
+from rfc.toolchain import convert_myhdl, elaboration, run_cocotb
 
 PUBLISHERS = 3
 

@@ -14,9 +14,8 @@ from rfc.lib.arith.convert_hdl import (
     fixed_to_float_pipelined,
     float_to_fixed_pipelined,
 )
-from rfc.lib.converters.toplevel import elaboration
 from rfc.lib.fixed import FixedFormat, fixed_to_float, float_to_bits, float_to_fixed
-from rfc.toolchain import convert_myhdl, module_estimate
+from rfc.toolchain import convert_myhdl, elaboration, module_estimate
 from tests.lib.fixed.strategies import floats_near, formats, sample_floats
 from tests.support.cosim import run_handshake, signed, unsigned
 from tests.support.myhdl_stream import simulate_stream

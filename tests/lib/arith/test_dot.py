@@ -11,9 +11,8 @@ from myhdl import ResetSignal, Signal
 
 from rfc.lib.arith.dot import dot_latency, dot_product
 from rfc.lib.arith.dot_hdl import constant_dot, fixed_dot
-from rfc.lib.converters.toplevel import elaboration
 from rfc.lib.fixed import FixedFormat
-from rfc.toolchain import convert_myhdl
+from rfc.toolchain import convert_myhdl, elaboration
 from tests.lib.arith.flat import flat_ports, flat_top
 from tests.lib.arith.synth import map_xc7
 from tests.support.cosim import run_handshake, signed, unsigned

@@ -28,9 +28,8 @@ from rfc.lib.arith.engine import (
 )
 from rfc.lib.arith.engine_hdl import engine, zero_result_bits
 from rfc.lib.arith.transform import transform_multiply, transform_program
-from rfc.lib.converters.toplevel import elaboration
 from rfc.lib.fixed import FixedFormat, bits_to_float, float_to_bits
-from rfc.toolchain import convert_myhdl, module_estimate
+from rfc.toolchain import convert_myhdl, elaboration, module_estimate
 from tests.lib.arith.flat import flat_ports, flat_top
 from tests.support.cosim import run_handshake, signed, unsigned
 from tests.support.myhdl_stream import simulate_stream

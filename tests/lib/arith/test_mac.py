@@ -19,9 +19,8 @@ from rfc.lib.arith.mac_hdl import (
     mac_latency,
 )
 from rfc.lib.arith.pipeline import handshakes, stage_register
-from rfc.lib.converters.toplevel import elaboration
 from rfc.lib.fixed import FixedFormat
-from rfc.toolchain import convert_myhdl
+from rfc.toolchain import convert_myhdl, elaboration
 from tests.lib.arith.synth import map_xc7
 from tests.support.cosim import run_handshake, signed, unsigned
 from tests.support.myhdl_stream import simulate_stream

@@ -10,8 +10,7 @@ from myhdl import ResetSignal, Signal
 
 from rfc.lib.arith import SinCosConfig, sincos
 from rfc.lib.arith.sincos_hdl import sincos as sincos_block
-from rfc.lib.converters.toplevel import elaboration
-from rfc.toolchain import convert_myhdl
+from rfc.toolchain import convert_myhdl, elaboration
 from tests.support.cosim import run_handshake, signed, unsigned
 from tests.support.myhdl_stream import simulate_stream
 

@@ -8,8 +8,8 @@ from rfc.lib.arith import SinCosConfig
 from rfc.lib.arith.convert_hdl import float_to_fixed_pipelined
 from rfc.lib.arith.sincos_hdl import sincos
 from rfc.lib.arith.timing import BlockKey, blocks_in
-from rfc.lib.converters.toplevel import elaboration
 from rfc.lib.fixed import FixedFormat
+from rfc.toolchain import elaboration
 
 FORMAT = FixedFormat(50, 44)
 CONFIG = SinCosConfig(44)

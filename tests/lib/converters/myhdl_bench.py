@@ -14,8 +14,9 @@ from myhdl import StopSimulation, always, block, delay, instance, join
 from rfc.lib.converters.build import publisher_top, subscriber_top
 from rfc.lib.converters.ports import Direction, PortRole, Side, dma_ports, ports_of
 from rfc.lib.converters.steps import Plan
-from rfc.lib.converters.toplevel import elaboration, port_signals
+from rfc.lib.converters.toplevel import port_signals
 from rfc.lib.converters.transactions import Transactions
+from rfc.toolchain import elaboration
 
 #: Cycles a bench may run before it gives up (a hang is a failure, not a wait).
 TIMEOUT = 200_000

@@ -15,7 +15,8 @@ import pytest
 from myhdl import StopSimulation, always, block, delay, instance
 
 from rfc.lib.converters.chunk_length import dma_tap, dma_tap_ports, length_port
-from rfc.lib.converters.toplevel import elaboration, port_signals
+from rfc.lib.converters.toplevel import port_signals
+from rfc.toolchain import elaboration
 
 SERVED = (2, 0)
 

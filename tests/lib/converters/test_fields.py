@@ -28,7 +28,7 @@ from myhdl import (
 from rfc.lib.converters.fields import field_register
 from rfc.lib.converters.steps import Slot, SlotRole
 from rfc.lib.converters.tables import pieces
-from rfc.lib.converters.toplevel import elaboration
+from rfc.toolchain import elaboration
 from rfc.toolchain.convert import convert_myhdl
 
 #: (bus width in bytes, slot offset in the record, slot size): one run, two runs across a

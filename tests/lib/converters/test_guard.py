@@ -20,11 +20,12 @@ from myhdl import StopSimulation, always, block, delay, instance
 from rfc.lib.converters.guard import frame_guard, guard_ports
 from rfc.lib.converters.malformed import DROP_REASONS, counter_name
 from rfc.lib.converters.plan import plan
-from rfc.lib.converters.toplevel import elaboration, port_signals
+from rfc.lib.converters.toplevel import port_signals
 from rfc.messages.codec import encode
 from rfc.messages.layout import flatten
 from rfc.messages.limits import Limits
 from rfc.messages.rosbags_adapter import Middleware, message_types
+from rfc.toolchain import elaboration
 from tests.hdl.converters.fuzz import candidates, verdict
 from tests.hdl.converters.matrix import drawn_values
 

@@ -23,12 +23,13 @@ from rfc.lib.converters.plan import plan
 from rfc.lib.converters.ports import Direction, PortRole, Side, ports_of
 from rfc.lib.converters.steps import Payload, Plan
 from rfc.lib.converters.tables import tables
-from rfc.lib.converters.toplevel import elaboration, port_signals, top_block
+from rfc.lib.converters.toplevel import port_signals, top_block
 from rfc.lib.converters.transactions import transactions
 from rfc.messages.layout import flatten
 from rfc.messages.limits import Limits
 from rfc.messages.rosbags_adapter import Middleware, message_types
 from rfc.messages.values import message_to_values
+from rfc.toolchain import elaboration
 
 IMAGE = "sensor_msgs/msg/Image"
 LIMITS = Limits(string=24, sequence=512)

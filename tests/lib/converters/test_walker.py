@@ -16,13 +16,13 @@ from myhdl import ResetSignal, Signal, StopSimulation, always, block, delay, ins
 from rfc.lib.converters.plan import plan
 from rfc.lib.converters.steps import Plan
 from rfc.lib.converters.tables import Kind, tables
-from rfc.lib.converters.toplevel import elaboration
 from rfc.lib.converters.transactions import transactions
 from rfc.lib.converters.walker import Walk, step_walker
 from rfc.messages.codec import encode
 from rfc.messages.layout import flatten
 from rfc.messages.limits import Limits
 from rfc.messages.rosbags_adapter import Middleware, message_types
+from rfc.toolchain import elaboration
 from tests.hdl.converters.matrix import drawn_values
 
 LIMITS = Limits(string=64, sequence=16, frame=4096)

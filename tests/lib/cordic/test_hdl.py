@@ -10,10 +10,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from myhdl import ResetSignal, Signal, intbv
 
-from rfc.lib.converters.toplevel import elaboration
 from rfc.lib.cordic import CordicConfig, vectoring
 from rfc.lib.cordic.hdl import cordic_vectoring
-from rfc.toolchain import convert_myhdl
+from rfc.toolchain import convert_myhdl, elaboration
 from tests.support.cosim import run_handshake, signed, unsigned
 from tests.support.myhdl_stream import simulate_stream
 

@@ -7,11 +7,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from myhdl import Signal, block, delay, instance, intbv
 
-from rfc.lib.converters.toplevel import elaboration
 from rfc.lib.fixed import FixedFormat, fixed_to_float, float_to_bits, float_to_fixed
 from rfc.lib.fixed.hdl import fixed_to_float as fixed_to_float_block
 from rfc.lib.fixed.hdl import float_to_fixed as float_to_fixed_block
-from rfc.toolchain import convert_myhdl
+from rfc.toolchain import convert_myhdl, elaboration
 from tests.lib.fixed.strategies import floats_near, formats, sample_floats
 from tests.support.cosim import run_combinational, signed
 

@@ -14,9 +14,10 @@ import random
 import pytest
 from myhdl import StopSimulation, block, delay, instance
 
-from rfc.lib.converters.toplevel import elaboration, port_signals, top_block
+from rfc.lib.converters.toplevel import port_signals, top_block
 from rfc.lib.hls.adapter import AdapterShape, StreamPort, hls_adapter
 from rfc.lower.system.components import adapter_ports
+from rfc.toolchain import elaboration
 
 SHAPE = AdapterShape(
     inputs=("a", "b"),

@@ -14,10 +14,11 @@ import random
 import pytest
 from myhdl import Simulation, StopSimulation, always, delay, instance
 
-from rfc.lib.converters.toplevel import elaboration, port_signals
+from rfc.lib.converters.toplevel import port_signals
 from rfc.lib.manager.entity import ManagerShape, manager_body, manager_ports
 from rfc.lib.schedulers.spec import Algorithm, SchedulerSpec
 from rfc.runtime.protocol import Chunk, ChunkFlags, Reassembler, message_chunk
+from rfc.toolchain import elaboration
 
 WIDTH = 64
 

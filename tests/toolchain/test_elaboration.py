@@ -15,7 +15,7 @@ import myhdl._visitors
 import myhdl.conversion._analyze
 import pytest
 
-from rfc.lib.converters.toplevel import elaboration
+from rfc.toolchain import elaboration
 
 CONVERT_ONE = """
 import sys

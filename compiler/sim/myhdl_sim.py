@@ -25,8 +25,7 @@ from rfc.runtime.protocol import Chunk
 from rfc.runtime.stall import StallWatch, largest_output, pending_work
 from rfc.sim.busy import BusyWatch
 from rfc.sim.settings import ReplaySettings
-from rfc.toolchain import elaboration
-from rfc.toolchain.myhdl_state import transient_signals
+from rfc.toolchain.myhdl_state import elaboration, transient_signals
 
 MyhdlFactory = Callable[..., Any]
 

@@ -27,8 +27,7 @@ from rfc.lib.converters.toplevel import port_signals, top_block
 from rfc.messages.codec import Values, default_values, encode
 from rfc.messages.limits import Limits
 from rfc.passes.check_hardware import subscriber_guard
-from rfc.toolchain import elaboration
-from rfc.toolchain.myhdl_state import transient_signals
+from rfc.toolchain.myhdl_state import elaboration, transient_signals
 
 #: Cycles after which a measurement gives up (the block never answered).
 _LIMIT = 20_000

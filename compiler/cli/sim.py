@@ -189,7 +189,7 @@ def sim(
             raise typer.BadParameter("--netlist simulates VHDL netlists: use --simulator ghdl")
         simulator = Simulator.GHDL
         top_provider = top_provider or NETLIST_TOP_PROVIDER
-    run = _Run(bag, types, topic_names, runtime, design, backend, top_provider, simulator)
+    run = _Run(spec, bag, types, topic_names, runtime, design, backend, top_provider, simulator)
     warnings: list[str] = []
     with counting_bar("replaying", hidden=as_json) as bar:
         task = bar.add_task("replay", total=run.total())
@@ -220,6 +220,7 @@ def sim(
 class _Run:
     """One replay: the bag's messages of the spec's topics through the chosen backend."""
 
+    spec: Path
     bag: Path
     types: MessageTypes
     topic_names: dict[str, str]
@@ -243,17 +244,15 @@ class _Run:
 
     def execute(self, settings: ReplaySettings) -> tuple[list[Published], Account]:
         from rfc.runtime.replay import replay
-        from rfc.sim.hardware import DEFAULT_TOP_PROVIDER, load_top_provider
         from rfc.toolchain import CosimError
 
         runtime, design = self.runtime, self.design
         if not runtime.plan.has_logic:
             with closing(self.messages()) as messages:
                 return replay(runtime, messages, None, settings.progress), runtime.account
-        provider = load_top_provider(self.top_provider or DEFAULT_TOP_PROVIDER)
         scratch = Path(tempfile.mkdtemp(prefix="rfc-sim-"))
         try:
-            top = provider(design, scratch / "hdl")
+            top = self._top(scratch / "hdl")
             if self.backend is Backend.MYHDL:
                 published = self._myhdl(top, settings)
             else:
@@ -266,6 +265,23 @@ class _Run:
             raise
         shutil.rmtree(scratch, ignore_errors=True)  # kept above when it failed, for its log
         return published, runtime.account
+
+    def _top(self, directory: Path) -> SimulationTop:
+        """The logic generated into `directory`, its converted blocks reused from earlier runs.
+
+        The conversion cache `rfc build` fills (`rfc.lower.system.conversion_cache`) serves
+        rfc's own top providers under a key of their own (sim's pipeline moves HLS cores to the
+        processor); another provider's code is not in any key, so it always converts.
+        """
+        from rfc.lower.system.conversion_cache import conversion_key, conversions_cached
+        from rfc.sim.hardware import DEFAULT_TOP_PROVIDER, load_top_provider
+
+        reference = self.top_provider or DEFAULT_TOP_PROVIDER
+        provider = load_top_provider(reference)
+        if reference not in (DEFAULT_TOP_PROVIDER, NETLIST_TOP_PROVIDER):
+            return provider(self.design, directory)
+        with conversions_cached(conversion_key(self.spec, self.design, "rfc sim")):
+            return provider(self.design, directory)
 
     def _ghdl(
         self, top: SimulationTop, scratch: Path, settings: ReplaySettings

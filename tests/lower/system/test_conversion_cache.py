@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import importlib
 import os
+import struct
 import sys
 from pathlib import Path
 
@@ -21,10 +22,12 @@ from rfc.lower.system.conversion_cache import (
     rfc_digest,
     source_digest,
 )
+from rfc.messages.rosbags_adapter import message_types, read_bag, write_bag
 from tests.lower.system.systems import point_system, write_spec
 from tests.support.cli import run_rfc
 
 ROOT = Path(__file__).resolve().parents[3]
+POINT = "geometry_msgs/msg/Point"
 
 #: A Point → Point accelerator whose y is a constant of the module it imports.
 ACCELERATOR = """from myhdl import always_comb, block
@@ -80,6 +83,36 @@ def test_a_second_build_converts_and_simulates_nothing_and_writes_the_first_ones
     assert files_below(tmp_path / "warm") == files_below(tmp_path / "cold")
     assert "hw/passpoint.vhd" in files_below(tmp_path / "warm")
     assert "| accelerator | `acc` | 1 |" in (tmp_path / "warm/report.md").read_text()
+
+
+def test_a_second_sim_of_the_same_spec_converts_nothing_and_gives_the_first_ones_bag(
+    tmp_path, monkeypatch
+):
+    monkeypatch.setenv("RFC_CACHE_DIR", str(tmp_path / "cache"))
+    spec = project(tmp_path, "offsets_of_the_warm_sim", offset=7)
+    types = message_types("ros2")
+    points = [types.build(POINT, {"x": float(n), "y": 0.0, "z": -float(n)}) for n in range(3)]
+    bag = tmp_path / "in.mcap"
+    write_bag(bag, types, {"/p": POINT}, [("/p", 1000 * (n + 1), types.serialize(p, POINT))
+                                          for n, p in enumerate(points)])  # fmt: skip
+
+    def sim(out: str) -> bytes:
+        args = ["sim", str(spec), "--bag", str(bag), "--out", str(tmp_path / out)]
+        result = CliRunner().invoke(app, [*args, "--simulator", "ghdl", "--json"])
+        assert result.exit_code == 0, result.output
+        return (tmp_path / out).read_bytes()
+
+    cold = sim("cold.mcap")
+    monkeypatch.setattr(myhdl._block._Block, "convert", refuse_to_convert)
+    assert sim("warm.mcap") == cold
+    # the accelerator's constant reached the bag: y is OFFSET's bits, not the input's 0.0
+    outputs = [m.data for m in read_bag(tmp_path / "warm.mcap", types)]
+    assert [types.deserialize(data, POINT).x for data in outputs] == [0.0, 1.0, 2.0]
+    assert {struct.unpack_from("<Q", data, 12)[0] for data in outputs} == {7}
+
+
+def refuse_to_convert(*args, **kwargs):
+    raise AssertionError("a warm run converted a MyHDL block")
 
 
 def test_a_changed_source_or_imported_module_is_converted_afresh(tmp_path):
